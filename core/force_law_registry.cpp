@@ -1,0 +1,61 @@
+#include "sinew/core/force_law_registry.hpp"
+
+#include "sinew/core/builtin_force_laws.hpp"
+#include "sinew/core/error.hpp"
+
+namespace sinew {
+
+ForceLawRegistry& ForceLawRegistry::global() {
+    // Built-ins are added here rather than by static registration objects, which a static library drops.
+    static ForceLawRegistry* registry = [] {
+        auto* r = new ForceLawRegistry();
+        r->add("prescribed_tension", &PrescribedTension::create);
+        r->add("spring_damper", &SpringDamper::create);
+        return r;
+    }();
+    return *registry;
+}
+
+void ForceLawRegistry::add(const std::string& type, ForceLawFactory factory) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (type.empty()) throw Error("a force law type needs a non-empty name");
+    if (!factories_.emplace(type, std::move(factory)).second)
+        throw Error("force law type '" + type + "' is already registered");
+}
+
+bool ForceLawRegistry::contains(const std::string& type) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return factories_.count(type) != 0;
+}
+
+std::vector<std::string> ForceLawRegistry::listTypes() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<std::string> types;
+    for (const auto& entry : factories_) types.push_back(entry.first);
+    return types;
+}
+
+std::shared_ptr<const ForceLaw> ForceLawRegistry::create(const std::string& type,
+                                                         const ForceLawParameters& parameters) const {
+    ForceLawFactory factory;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        auto it = factories_.find(type);
+        if (it == factories_.end()) {
+            std::string known;
+            for (const auto& entry : factories_) known += (known.empty() ? "" : ", ") + entry.first;
+            throw Error("unknown force law type '" + type + "' (known: " + known + ")");
+        }
+        factory = it->second;
+    }
+    std::shared_ptr<const ForceLaw> law = factory(parameters);
+    const std::vector<std::string> unread = parameters.findUnread();
+    if (!unread.empty()) {
+        std::string names;
+        for (const auto& name : unread) names += (names.empty() ? "'" : ", '") + name + "'";
+        throw Error("force law '" + type + "' has no parameter " + names);
+    }
+    return law;
+}
+
+}  // namespace sinew

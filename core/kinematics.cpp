@@ -1,0 +1,117 @@
+#include "sinew/core/kinematics.hpp"
+
+#include <Eigen/Geometry>
+
+namespace sinew {
+namespace {
+
+Eigen::Quaterniond readQuaternion(const Eigen::VectorXd& q, int start) {
+    return Eigen::Quaterniond(q[start], q[start + 1], q[start + 2], q[start + 3]).normalized();
+}
+
+}  // namespace
+
+void calcPositionKinematics(const Model& model, Data& data, const Eigen::VectorXd& q) {
+    for (int i = 0; i < model.getNumLinks(); ++i) {
+        const Joint& joint = model.getJoint(i);
+        const std::size_t b = static_cast<std::size_t>(i);
+        Eigen::Matrix3d R_GP = Eigen::Matrix3d::Identity();
+        Eigen::Vector3d p_GP = Eigen::Vector3d::Zero();
+        if (joint.parent != kGround) {
+            R_GP = data.R_GB[static_cast<std::size_t>(joint.parent)];
+            p_GP = data.p_GB[static_cast<std::size_t>(joint.parent)];
+        }
+        Eigen::Matrix3d R_FM = Eigen::Matrix3d::Identity();
+        Eigen::Vector3d p_FM = Eigen::Vector3d::Zero();
+        switch (joint.type) {
+            case JointType::Free:
+                R_FM = readQuaternion(q, joint.qStart).toRotationMatrix();
+                p_FM = q.segment<3>(joint.qStart + 4);
+                break;
+            case JointType::Ball: R_FM = readQuaternion(q, joint.qStart).toRotationMatrix(); break;
+            case JointType::Pin: R_FM = Eigen::AngleAxisd(q[joint.qStart], Eigen::Vector3d::UnitZ()).toRotationMatrix(); break;
+            case JointType::Weld: break;
+        }
+        data.R_GF[b] = R_GP * joint.R_PF;
+        data.p_GM[b] = p_GP + R_GP * joint.p_PF + data.R_GF[b] * p_FM;
+        data.R_GB[b] = data.R_GF[b] * R_FM * joint.R_BM.transpose();
+        data.p_GB[b] = data.p_GM[b] - data.R_GB[b] * joint.p_BM;
+    }
+}
+
+void calcVelocityKinematics(const Model& model, Data& data, const Eigen::VectorXd& u) {
+    for (int i = 0; i < model.getNumLinks(); ++i) {
+        const Joint& joint = model.getJoint(i);
+        const std::size_t b = static_cast<std::size_t>(i);
+        Eigen::Vector3d w_GP = Eigen::Vector3d::Zero();
+        Eigen::Vector3d v_GM = Eigen::Vector3d::Zero();  // velocity of the parent's point at the joint centre
+        if (joint.parent != kGround) {
+            const std::size_t p = static_cast<std::size_t>(joint.parent);
+            w_GP = data.w_GB[p];
+            v_GM = data.v_GB[p] + w_GP.cross(data.p_GM[b] - data.p_GB[p]);
+        }
+        Eigen::Vector3d w_GB = w_GP;
+        switch (joint.type) {
+            case JointType::Free:
+                w_GB += data.R_GF[b] * u.segment<3>(joint.uStart);
+                v_GM += data.R_GF[b] * u.segment<3>(joint.uStart + 3);
+                break;
+            case JointType::Ball: w_GB += data.R_GF[b] * u.segment<3>(joint.uStart); break;
+            case JointType::Pin: w_GB += data.R_GF[b].col(2) * u[joint.uStart]; break;
+            case JointType::Weld: break;
+        }
+        data.w_GB[b] = w_GB;
+        data.v_GB[b] = v_GM + w_GB.cross(data.p_GB[b] - data.p_GM[b]);
+    }
+}
+
+void projectOntoJoint(const Joint& joint, const Eigen::Matrix3d& R_GF, const Eigen::Vector3d& p_GM,
+                      const SpatialVector& F_G, double* tauJoint) {
+    const Eigen::Vector3d f = F_G.tail<3>();
+    const Eigen::Vector3d momentAboutJoint = F_G.head<3>() - p_GM.cross(f);
+    switch (joint.type) {
+        case JointType::Free:
+            Eigen::Map<Eigen::Vector3d>{tauJoint} = R_GF.transpose() * momentAboutJoint;
+            Eigen::Map<Eigen::Vector3d>{tauJoint + 3} = R_GF.transpose() * f;
+            break;
+        case JointType::Ball: Eigen::Map<Eigen::Vector3d>{tauJoint} = R_GF.transpose() * momentAboutJoint; break;
+        case JointType::Pin: tauJoint[0] = R_GF.col(2).dot(momentAboutJoint); break;
+        case JointType::Weld: break;
+    }
+}
+
+void calcGeneralizedForcesFromLinkForces(const Model& model, Data& data, Eigen::Ref<Eigen::VectorXd> tau) {
+    for (int i = model.getNumLinks() - 1; i >= 0; --i) {
+        const Joint& joint = model.getJoint(i);
+        const std::size_t b = static_cast<std::size_t>(i);
+        projectOntoJoint(joint, data.R_GF[b], data.p_GM[b], data.F_G[b], tau.data() + joint.uStart);
+        if (joint.parent != kGround) data.F_G[static_cast<std::size_t>(joint.parent)] += data.F_G[b];
+    }
+}
+
+Eigen::VectorXd integrateCoordinates(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& u,
+                                     double dt) {
+    Eigen::VectorXd result = q;
+    auto rotate = [&](int qStart, const Eigen::Vector3d& w_F) {
+        const double angle = w_F.norm() * dt;
+        const Eigen::Quaterniond delta =
+            angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, w_F.normalized())) : Eigen::Quaterniond::Identity();
+        // w_FM is expressed in F, so the increment multiplies from the F side: R_FM(t+dt) = exp(w dt) R_FM(t).
+        const Eigen::Quaterniond next = (delta * readQuaternion(q, qStart)).normalized();
+        result.segment<4>(qStart) << next.w(), next.x(), next.y(), next.z();
+    };
+    for (const Joint& joint : model.getJoints()) {
+        switch (joint.type) {
+            case JointType::Free:
+                rotate(joint.qStart, u.segment<3>(joint.uStart));
+                result.segment<3>(joint.qStart + 4) += dt * u.segment<3>(joint.uStart + 3);
+                break;
+            case JointType::Ball: rotate(joint.qStart, u.segment<3>(joint.uStart)); break;
+            case JointType::Pin: result[joint.qStart] += dt * u[joint.uStart]; break;
+            case JointType::Weld: break;
+        }
+    }
+    return result;
+}
+
+}  // namespace sinew

@@ -1,0 +1,33 @@
+#pragma once
+// Forward kinematics of the link tree and the projection of link forces onto the joints.
+// Conventions are in model.hpp; the equations in docs/wire-jacobian.md.
+#include <Eigen/Core>
+
+#include "sinew/core/data.hpp"
+#include "sinew/core/model.hpp"
+
+namespace sinew {
+
+// Fills Data::R_GB, p_GB, R_GF, p_GM from q (nq). Quaternions need not be normalised.
+void calcPositionKinematics(const Model& model, Data& data, const Eigen::VectorXd& q);
+
+// Fills Data::w_GB, v_GB from u (nu). Needs calcPositionKinematics first.
+void calcVelocityKinematics(const Model& model, Data& data, const Eigen::VectorXd& u);
+
+// Generalized forces (nu) equivalent to the spatial forces in Data::F_G (moment about the ground origin,
+// force, per link): tau = sum over links of J_link^T F. Consumes Data::F_G (it accumulates subtree forces
+// in place, tip to base). Needs calcPositionKinematics first.
+void calcGeneralizedForcesFromLinkForces(const Model& model, Data& data, Eigen::Ref<Eigen::VectorXd> tau);
+
+// The generalized force (joint.nu values written at tauJoint) that a spatial force F_G (moment about the
+// ground origin; force) acting on the joint's subtree exerts on the joint, given the joint frame F's
+// orientation R_GF and the joint centre p_GM: H^T F with H the joint's motion subspace.
+void projectOntoJoint(const Joint& joint, const Eigen::Matrix3d& R_GF, const Eigen::Vector3d& p_GM,
+                      const SpatialVector& F_G, double* tauJoint);
+
+// q advanced along u for a time dt on the configuration manifold (quaternions by exact rotation about the
+// angular velocity in F): the exponential map that finite-difference checks and integrators need.
+Eigen::VectorXd integrateCoordinates(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& u,
+                                     double dt);
+
+}  // namespace sinew

@@ -1,0 +1,60 @@
+#pragma once
+// Builds a SimTK::MultibodySystem from a sinew Model: one MobilizedBody per link (Free, Ball, Pin, Weld
+// mobilizers, in the model's order so Simbody's q and u are sinew's), Constraint::Ball loop closures,
+// gravity, and one WireForce (Force::Custom) per wire.
+#include "sinew/simbody/ndebug_guard.hpp"
+
+#include <Eigen/Core>
+#include <Simbody.h>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sinew/core/model.hpp"
+#include "sinew/simbody/wire_force.hpp"
+
+namespace sinew {
+
+struct SimbodyModelOptions {
+    // Link fixed to ground at its default pose by a Constraint::Weld (the paper's "hung by the head").
+    // Empty: nothing added. A link already welded to ground through weld joints needs nothing either.
+    std::string hangBy;
+    bool gravity = true;
+    bool wires = true;
+};
+
+class SimbodyModel {
+public:
+    explicit SimbodyModel(Model model, SimbodyModelOptions options = {});
+    SimbodyModel(const SimbodyModel&) = delete;
+    SimbodyModel& operator=(const SimbodyModel&) = delete;
+
+    const Model& getModel() const { return model_; }
+    const SimTK::MultibodySystem& getSystem() const { return *system_; }
+    SimTK::MultibodySystem& updSystem() { return *system_; }
+    const SimTK::SimbodyMatterSubsystem& getMatter() const { return *matter_; }
+    const SimTK::MobilizedBody& getMobilizedBody(int link) const;
+    // Wire w's force element and its implementation (for its length, speed and tension).
+    const SimTK::Force& getWireForceElement(int wire) const;
+    const WireForce& getWireForce(int wire) const;
+
+    // The system's default state with sinew's q (nq) and u (nu) in it, realized to `stage`.
+    SimTK::State makeState(const Eigen::VectorXd& q, const Eigen::VectorXd& u,
+                           SimTK::Stage stage = SimTK::Stage::Velocity) const;
+    // The model's default pose, at rest; loop closures satisfied to `accuracy` (projected when needed).
+    SimTK::State makeDefaultState(double accuracy = 1e-10) const;
+
+private:
+    Model model_;
+    std::unique_ptr<SimTK::MultibodySystem> system_;
+    SimTK::SimbodyMatterSubsystem* matter_ = nullptr;
+    SimTK::GeneralForceSubsystem* forces_ = nullptr;
+    std::vector<SimTK::MobilizedBodyIndex> mobilizedBodies_;
+    std::vector<SimTK::ForceIndex> wireForces_;
+    std::vector<const WireForce*> wireImplementations_;
+};
+
+SimTK::Vector toSimTK(const Eigen::VectorXd& v);
+Eigen::VectorXd toEigen(const SimTK::Vector& v);
+
+}  // namespace sinew

@@ -1,0 +1,78 @@
+#include "sinew/simbody/forward_simulation.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "sinew/core/error.hpp"
+#include "sinew/simbody/simbody_model.hpp"
+
+namespace sinew {
+
+SimulationSummary simulateForward(const Model& model, const ForwardSimulationOptions& options,
+                                  const std::function<void(const SimulationFrame&)>& onFrame) {
+    for (const Link& link : model.getLinks())
+        if (link.isVirtual)
+            throw Error("model '" + model.getName() + "' has virtual link '" + link.name +
+                        "'; Simbody cannot integrate massless 6-DOF bodies, and sinew's quasi-static treatment of "
+                        "them is not implemented yet");
+    if (!(options.duration > 0) || !(options.reportInterval > 0) || !(options.accuracy > 0))
+        throw Error("simulation needs duration, report interval and accuracy > 0");
+
+    SimbodyModelOptions systemOptions;
+    systemOptions.hangBy = options.hangBy;
+    const SimbodyModel simbody(model, systemOptions);
+    const SimTK::MultibodySystem& system = simbody.getSystem();
+    SimTK::State state = simbody.makeDefaultState(options.accuracy * 1e-3);
+    if (options.initialSpeeds.size() > 0) {
+        if (options.initialSpeeds.size() != model.getNumU())
+            throw Error("initial speeds need " + std::to_string(model.getNumU()) + " values");
+        state.updU() = toSimTK(options.initialSpeeds);
+        system.realize(state, SimTK::Stage::Velocity);
+        system.projectU(state, options.accuracy * 1e-3);
+    }
+
+    SimTK::RungeKuttaMersonIntegrator integrator(system);
+    integrator.setAccuracy(options.accuracy);
+    integrator.setConstraintTolerance(options.accuracy);
+    SimTK::TimeStepper stepper(system, integrator);
+    stepper.initialize(state);
+
+    SimulationSummary summary;
+    SimulationFrame frame;
+    frame.tensions.resize(model.getNumWires());
+    auto report = [&](const SimTK::State& s) {
+        system.realize(s, SimTK::Stage::Dynamics);
+        frame.time = s.getTime();
+        frame.q = toEigen(s.getQ());
+        frame.u = toEigen(s.getU());
+        for (int w = 0; w < model.getNumWires(); ++w) frame.tensions[w] = simbody.getWireForce(w).calcTension(s);
+        frame.kineticEnergy = system.calcKineticEnergy(s);
+        frame.potentialEnergy = system.calcPotentialEnergy(s);
+        const double energy = frame.kineticEnergy + frame.potentialEnergy;
+        if (summary.frames == 0) summary.initialEnergy = energy;
+        if (!std::isfinite(energy) || !frame.q.allFinite())
+            throw Error("simulation diverged at t = " + std::to_string(frame.time) + " s (non-finite state)");
+        summary.maxEnergyDrift = std::max(summary.maxEnergyDrift, std::abs(energy - summary.initialEnergy));
+        summary.peakKineticEnergy = std::max(summary.peakKineticEnergy, frame.kineticEnergy);
+        ++summary.frames;
+        onFrame(frame);
+    };
+
+    const auto start = std::chrono::steady_clock::now();
+    report(integrator.getState());
+    const int numReports = static_cast<int>(std::floor(options.duration / options.reportInterval + 1e-9));
+    for (int i = 1; i <= numReports; ++i) {
+        const double t = std::min(options.duration, i * options.reportInterval);
+        try {
+            stepper.stepTo(t);
+        } catch (const std::exception& e) {
+            throw Error("integration failed before t = " + std::to_string(t) + " s: " + e.what());
+        }
+        report(integrator.getState());
+    }
+    summary.steps = integrator.getNumStepsTaken();
+    summary.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return summary;
+}
+
+}  // namespace sinew

@@ -1,0 +1,135 @@
+#include "sinew/simbody/simbody_model.hpp"
+
+#include "sinew/core/data.hpp"
+#include "sinew/core/error.hpp"
+#include "sinew/core/kinematics.hpp"
+
+namespace sinew {
+namespace {
+
+SimTK::Vec3 toVec3(const Eigen::Vector3d& v) { return SimTK::Vec3(v[0], v[1], v[2]); }
+
+SimTK::Rotation toRotation(const Eigen::Matrix3d& R) {
+    SimTK::Mat33 m;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) m(r, c) = R(r, c);
+    return SimTK::Rotation(m);
+}
+
+SimTK::Body::Rigid makeBody(const Link& link) {
+    const Eigen::Matrix3d& I = link.inertia_Bcom;
+    const SimTK::Inertia inertiaAboutCom(SimTK::Vec3(I(0, 0), I(1, 1), I(2, 2)), SimTK::Vec3(I(0, 1), I(0, 2), I(1, 2)));
+    const SimTK::Vec3 com = toVec3(link.com_B);
+    // Simbody wants the inertia about the body origin.
+    return SimTK::Body::Rigid(
+        SimTK::MassProperties(link.mass, com, inertiaAboutCom.shiftFromMassCenter(com, link.mass)));
+}
+
+bool isWeldedToGround(const Model& model, int link) {
+    for (; link != kGround; link = model.getJoint(link).parent)
+        if (model.getJoint(link).type != JointType::Weld) return false;
+    return true;
+}
+
+}  // namespace
+
+SimTK::Vector toSimTK(const Eigen::VectorXd& v) {
+    SimTK::Vector out(static_cast<int>(v.size()));
+    for (int i = 0; i < out.size(); ++i) out[i] = v[i];
+    return out;
+}
+
+Eigen::VectorXd toEigen(const SimTK::Vector& v) {
+    Eigen::VectorXd out(v.size());
+    for (int i = 0; i < v.size(); ++i) out[i] = v[i];
+    return out;
+}
+
+SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
+    : model_(std::move(model)), system_(std::make_unique<SimTK::MultibodySystem>()) {
+    matter_ = new SimTK::SimbodyMatterSubsystem(*system_);  // owned by the system
+    forces_ = new SimTK::GeneralForceSubsystem(*system_);
+    if (options.gravity) SimTK::Force::UniformGravity(*forces_, *matter_, toVec3(model_.getGravity()));
+
+    for (int i = 0; i < model_.getNumLinks(); ++i) {
+        const Joint& joint = model_.getJoint(i);
+        SimTK::MobilizedBody& parent = joint.parent == kGround ? matter_->updGround()
+                                                               : matter_->updMobilizedBody(mobilizedBodies_[static_cast<std::size_t>(joint.parent)]);
+        const SimTK::Transform X_PF(toRotation(joint.R_PF), toVec3(joint.p_PF));
+        const SimTK::Transform X_BM(toRotation(joint.R_BM), toVec3(joint.p_BM));
+        const SimTK::Body::Rigid body = makeBody(model_.getLink(i));
+        SimTK::MobilizedBodyIndex index;
+        switch (joint.type) {
+            case JointType::Free: index = SimTK::MobilizedBody::Free(parent, X_PF, body, X_BM).getMobilizedBodyIndex(); break;
+            case JointType::Ball: index = SimTK::MobilizedBody::Ball(parent, X_PF, body, X_BM).getMobilizedBodyIndex(); break;
+            case JointType::Pin: index = SimTK::MobilizedBody::Pin(parent, X_PF, body, X_BM).getMobilizedBodyIndex(); break;
+            case JointType::Weld: index = SimTK::MobilizedBody::Weld(parent, X_PF, body, X_BM).getMobilizedBodyIndex(); break;
+        }
+        mobilizedBodies_.push_back(index);
+    }
+
+    for (const Loop& loop : model_.getLoops())
+        SimTK::Constraint::Ball(matter_->updMobilizedBody(mobilizedBodies_[static_cast<std::size_t>(loop.linkA)]), toVec3(loop.p_A),
+                                matter_->updMobilizedBody(mobilizedBodies_[static_cast<std::size_t>(loop.linkB)]), toVec3(loop.p_B));
+
+    if (!options.hangBy.empty()) {
+        const int link = model_.findLinkIndex(options.hangBy);
+        if (link < 0) throw Error("--hang-by: model '" + model_.getName() + "' has no link '" + options.hangBy + "'");
+        if (model_.getLink(link).isVirtual) throw Error("--hang-by: '" + options.hangBy + "' is a virtual link");
+        if (!isWeldedToGround(model_, link)) {
+            Data data(model_);
+            calcPositionKinematics(model_, data, model_.getDefaultQ());
+            const std::size_t b = static_cast<std::size_t>(link);
+            const SimTK::Transform X_GB(toRotation(data.R_GB[b]), toVec3(data.p_GB[b]));
+            SimTK::Constraint::Weld(matter_->updGround(), X_GB, matter_->updMobilizedBody(mobilizedBodies_[b]),
+                                    SimTK::Transform());
+        }
+    }
+
+    if (options.wires) {
+        for (const Wire& wire : model_.getWires()) {
+            std::vector<WireForce::Station> path;
+            for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
+                const WirePoint& point = model_.getWirePoints()[static_cast<std::size_t>(k)];
+                path.push_back({mobilizedBodies_[static_cast<std::size_t>(point.link)], toVec3(point.p_B)});
+            }
+            auto* implementation = new WireForce(*matter_, wire.name, std::move(path), wire.law);
+            wireImplementations_.push_back(implementation);
+            wireForces_.push_back(SimTK::Force::Custom(*forces_, implementation).getForceIndex());  // takes ownership
+        }
+    }
+    system_->realizeTopology();
+}
+
+const SimTK::MobilizedBody& SimbodyModel::getMobilizedBody(int link) const {
+    return matter_->getMobilizedBody(mobilizedBodies_.at(static_cast<std::size_t>(link)));
+}
+
+const SimTK::Force& SimbodyModel::getWireForceElement(int wire) const {
+    return forces_->getForce(wireForces_.at(static_cast<std::size_t>(wire)));
+}
+
+const WireForce& SimbodyModel::getWireForce(int wire) const {
+    return *wireImplementations_.at(static_cast<std::size_t>(wire));
+}
+
+SimTK::State SimbodyModel::makeState(const Eigen::VectorXd& q, const Eigen::VectorXd& u, SimTK::Stage stage) const {
+    if (q.size() != model_.getNumQ() || u.size() != model_.getNumU())
+        throw Error("state of model '" + model_.getName() + "' needs " + std::to_string(model_.getNumQ()) + " q and " +
+                    std::to_string(model_.getNumU()) + " u, got " + std::to_string(q.size()) + " and " +
+                    std::to_string(u.size()));
+    SimTK::State state = system_->getDefaultState();
+    state.updQ() = toSimTK(q);
+    state.updU() = toSimTK(u);
+    system_->realize(state, stage);
+    return state;
+}
+
+SimTK::State SimbodyModel::makeDefaultState(double accuracy) const {
+    SimTK::State state = makeState(model_.getDefaultQ(), Eigen::VectorXd::Zero(model_.getNumU()), SimTK::Stage::Position);
+    system_->project(state, accuracy);
+    system_->realize(state, SimTK::Stage::Velocity);
+    return state;
+}
+
+}  // namespace sinew
