@@ -93,9 +93,10 @@ Eigen::VectorXd integrateCoordinates(const Model& model, const Eigen::VectorXd& 
                                      double dt) {
     Eigen::VectorXd result = q;
     auto rotate = [&](int qStart, const Eigen::Vector3d& w_F) {
-        const double angle = w_F.norm() * dt;
-        const Eigen::Quaterniond delta =
-            angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, w_F.normalized())) : Eigen::Quaterniond::Identity();
+        const Eigen::Vector3d rotation = w_F * dt;
+        const double angle = rotation.norm();
+        const Eigen::Quaterniond delta = angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, rotation / angle))
+                                                   : Eigen::Quaterniond::Identity();
         // w_FM is expressed in F, so the increment multiplies from the F side: R_FM(t+dt) = exp(w dt) R_FM(t).
         const Eigen::Quaterniond next = (delta * readQuaternion(q, qStart)).normalized();
         result.segment<4>(qStart) << next.w(), next.x(), next.y(), next.z();

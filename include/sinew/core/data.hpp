@@ -2,6 +2,7 @@
 // Per-evaluation buffers for one Model, sized once at construction; the calc* algorithms fill them and
 // allocate nothing. One Data per thread.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <Eigen/StdVector>
 #include <vector>
 
