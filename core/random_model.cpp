@@ -81,15 +81,18 @@ Model generateRandomModel(const RandomModelOptions& options) {
     const Model bare = tree.build();
     Data data(bare);
     calcPositionKinematics(bare, data, bare.getDefaultQ());
+    // The builder stores links parents-first, so generator index i ("link<i>") maps to another model index.
+    std::vector<std::size_t> modelIndex;
+    for (int i = 0; i < options.numLinks; ++i) modelIndex.push_back(static_cast<std::size_t>(bare.findLinkIndex(linkName(i))));
     auto inLink = [&](int link, const Eigen::Vector3d& p_G) -> Eigen::Vector3d {
-        const std::size_t b = static_cast<std::size_t>(link);
+        const std::size_t b = modelIndex[static_cast<std::size_t>(link)];
         return data.R_GB[b].transpose() * (p_G - data.p_GB[b]);
     };
     // Virtual links follow the real ones; each starts unrotated at its fork point.
     std::vector<Eigen::Vector3d> forks_G;
     auto toGround = [&](int link, const Eigen::Vector3d& p_B) -> Eigen::Vector3d {
         if (link >= options.numLinks) return forks_G[static_cast<std::size_t>(link - options.numLinks)] + p_B;
-        const std::size_t b = static_cast<std::size_t>(link);
+        const std::size_t b = modelIndex[static_cast<std::size_t>(link)];
         return data.p_GB[b] + data.R_GB[b] * p_B;
     };
 
@@ -98,7 +101,10 @@ Model generateRandomModel(const RandomModelOptions& options) {
         const int a = uniformInt(rng, 0, options.numLinks - 1);
         int b = uniformInt(rng, 0, options.numLinks - 2);
         if (b >= a) ++b;
-        const Eigen::Vector3d p_G = 0.5 * (toGround(a, bare.getLink(a).com_B) + toGround(b, bare.getLink(b).com_B)) +
+        auto comInGround = [&](int link) {
+            return toGround(link, bare.getLinks()[modelIndex[static_cast<std::size_t>(link)]].com_B);
+        };
+        const Eigen::Vector3d p_G = 0.5 * (comInGround(a) + comInGround(b)) +
                                     uniformVector(rng, 0.02);
         builder.addLoop({"loop" + std::to_string(c), linkName(a), inLink(a, p_G), linkName(b), inLink(b, p_G), ""});
     }
@@ -141,8 +147,8 @@ Model generateRandomModel(const RandomModelOptions& options) {
         const int virtualLink = options.numLinks + v;
         const int heads[2] = {uniformInt(rng, 0, options.numLinks - 1), uniformInt(rng, 0, options.numLinks - 1)};
         const int tail = uniformInt(rng, 0, options.numLinks - 1);
-        forks_G.push_back((data.p_GB[static_cast<std::size_t>(heads[0])] + data.p_GB[static_cast<std::size_t>(heads[1])] +
-                           data.p_GB[static_cast<std::size_t>(tail)]) / 3.0 + uniformVector(rng, 0.05));
+        forks_G.push_back((toGround(heads[0], Eigen::Vector3d::Zero()) + toGround(heads[1], Eigen::Vector3d::Zero()) +
+                           toGround(tail, Eigen::Vector3d::Zero())) / 3.0 + uniformVector(rng, 0.05));
         builder.addVirtualLink({"virtual" + std::to_string(v), forks_G.back(), ""});
         for (int part = 0; part < 3; ++part) {
             DraftWire draft;
