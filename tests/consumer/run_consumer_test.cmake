@@ -21,3 +21,11 @@ message("${out}")
 if(rc)
   message(FATAL_ERROR "the consumer program failed (${rc})")
 endif()
+
+# A consumer configuring a Release build (which adds -DNDEBUG) must be warned about Simbody's layout.
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build-release
+                        -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT err MATCHES "sinew: NDEBUG is defined")
+  message(FATAL_ERROR "no NDEBUG warning for a Release consumer; cmake said:\n${out}\n${err}")
+endif()
