@@ -47,8 +47,8 @@ Eigen::VectorXd toEigen(const SimTK::Vector& v) {
 
 SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
     : model_(std::move(model)), system_(std::make_unique<SimTK::MultibodySystem>()) {
-    matter_ = new SimTK::SimbodyMatterSubsystem(*system_);  // owned by the system
-    forces_ = new SimTK::GeneralForceSubsystem(*system_);
+    matter_ = std::make_unique<SimTK::SimbodyMatterSubsystem>(*system_);
+    forces_ = std::make_unique<SimTK::GeneralForceSubsystem>(*system_);
     if (options.gravity) SimTK::Force::UniformGravity(*forces_, *matter_, toVec3(model_.getGravity()));
 
     for (int i = 0; i < model_.getNumLinks(); ++i) {

@@ -47,8 +47,9 @@ public:
 private:
     Model model_;
     std::unique_ptr<SimTK::MultibodySystem> system_;
-    SimTK::SimbodyMatterSubsystem* matter_ = nullptr;
-    SimTK::GeneralForceSubsystem* forces_ = nullptr;
+    // Handles to subsystems the system owns; declared after it so they go first.
+    std::unique_ptr<SimTK::SimbodyMatterSubsystem> matter_;
+    std::unique_ptr<SimTK::GeneralForceSubsystem> forces_;
     std::vector<SimTK::MobilizedBodyIndex> mobilizedBodies_;
     std::vector<SimTK::ForceIndex> wireForces_;
     std::vector<const WireForce*> wireImplementations_;
