@@ -39,4 +39,11 @@ double ForceLaw::calcTension(const WireState& state) const {
     return tension > 0 ? tension : 0.0;
 }
 
+double ForceLaw::calcPotentialEnergy(double length) const {
+    const double energy = doCalcPotentialEnergy(length);
+    if (!std::isfinite(energy))
+        throw Error("force law returned a non-finite potential energy at length " + std::to_string(length) + " m");
+    return energy;
+}
+
 }  // namespace sinew

@@ -48,8 +48,10 @@ std::shared_ptr<const ForceLaw> ForceLawRegistry::create(const std::string& type
         }
         factory = it->second;
     }
-    std::shared_ptr<const ForceLaw> law = factory(parameters);
-    const std::vector<std::string> unread = parameters.findUnread();
+    // A fresh copy tracks what this factory reads, whatever earlier reads of `parameters` marked.
+    const ForceLawParameters tracked(parameters.getAll());
+    std::shared_ptr<const ForceLaw> law = factory(tracked);
+    const std::vector<std::string> unread = tracked.findUnread();
     if (!unread.empty()) {
         std::string names;
         for (const auto& name : unread) names += (names.empty() ? "'" : ", '") + name + "'";

@@ -66,6 +66,7 @@ Model generateRandomModel(const RandomModelOptions& options) {
         if (i == 0) {
             joint.type = options.rootJoint;
             joint.parent = "ground";
+            if (joint.type == JointType::Pin) joint.axis = uniformVector(rng, 1).normalized();
         } else {
             parent[static_cast<std::size_t>(i)] = pickParent(options, rng, i);
             joint.parent = linkName(parent[static_cast<std::size_t>(i)]);
@@ -121,8 +122,9 @@ Model generateRandomModel(const RandomModelOptions& options) {
     };
     const WireKind kinds[] = {WireKind::Muscle, WireKind::Tendon, WireKind::Ligament, WireKind::Cartilage};
     for (int w = 0; w < options.numWires; ++w) {
-        // The joints a wire crosses: up to three steps from its insertion link towards the root.
-        std::vector<int> path{uniformInt(rng, 0, options.numLinks - 1)};
+        // The joints a wire crosses: one to three steps from its insertion link (never the root, when
+        // there is another) towards the root.
+        std::vector<int> path{uniformInt(rng, options.numLinks > 1 ? 1 : 0, options.numLinks - 1)};
         const int hops = uniformInt(rng, 1, 3);
         for (int h = 0; h < hops && parent[static_cast<std::size_t>(path.back())] != kGround; ++h)
             path.push_back(parent[static_cast<std::size_t>(path.back())]);

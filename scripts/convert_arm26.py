@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Writes models/arm26.yaml, sinew's default model, from OpenSim's arm26.osim (opensim-models).
+"""Writes models/arm26.yaml, sinew's default model, from OpenSim's arm26.osim (opensim-models; the model's
+credits: the OpenSim team after Holzbaur et al. 2005, CC BY 3.0).
 
 The numbers (masses, inertias, joint centres, muscle path points, muscle parameters) are OpenSim's; the
 modelling choices are sinew's and documented in docs/models.md:
@@ -29,6 +30,8 @@ def vec(values):
 def offset_frame(joint, name):
     for frame in joint.iter("PhysicalOffsetFrame"):
         if frame.get("name") == name:
+            if any(numbers(frame.find("orientation").text)):
+                raise SystemExit(f"frame {name}: rotated offset frames are not handled by this converter")
             return frame.find("socket_parent").text.split("/")[-1], numbers(frame.find("translation").text)
     raise SystemExit(f"frame {name} not found in joint {joint.get('name')}")
 
@@ -47,8 +50,8 @@ def main(src, dst):
     root = ET.parse(src).getroot()
     model = root.find("Model")
     gravity = numbers(model.find("gravity").text)
-    out = ["# sinew model converted by scripts/convert_arm26.py from OpenSim's arm26.osim",
-           "# (opensim-org/opensim-models, Apache-2.0); see docs/models.md for what was changed and why.",
+    out = ["# sinew model converted by scripts/convert_arm26.py from OpenSim's arm26.osim (opensim-org/opensim-models;",
+           "# model credits: OpenSim team after Holzbaur et al. 2005, CC BY 3.0). docs/models.md says what changed and why.",
            "sinew_model: 1", "name: arm26", f"gravity: {vec(gravity)}", "links:"]
     for body in model.find("BodySet/objects").findall("Body"):
         inertia = numbers(body.find("inertia").text)

@@ -64,8 +64,11 @@ void expectAgreementWithSimbody(const test::NamedModel& m, std::mt19937& rng) {
     SimbodyModelOptions options;
     options.gravity = false;
     const SimbodyModel simbody(model, options);
+    int tautWires = 0;
     for (int trial = 0; trial < 3; ++trial) {
-        const Eigen::VectorXd q = generateRandomCoordinates(model, rng);
+        // Poses near the default one keep most wires taut (they are built taut there); the last is anywhere.
+        const Eigen::VectorXd q = trial < 2 ? integrateCoordinates(model, model.getDefaultQ(), generateRandomSpeeds(model, rng), 0.3)
+                                            : generateRandomCoordinates(model, rng);
         const Eigen::VectorXd u = generateRandomSpeeds(model, rng, 2.0);
         const CoreEvaluation core = evaluateCore(model, q, u);
         const SimTK::State state = simbody.makeState(q, u);
@@ -78,10 +81,11 @@ void expectAgreementWithSimbody(const test::NamedModel& m, std::mt19937& rng) {
         EXPECT_LE(relativeDifference(core.lengths, lengths), 1e-12) << m.name;
         EXPECT_LE(relativeDifference(core.speeds, speeds), 1e-10) << m.name << ": Simbody speed vs J u";
         EXPECT_LE(relativeDifference(core.tensions, tensions), 1e-10) << m.name;
-        ASSERT_GT(core.tensions.maxCoeff(), 0) << m.name << ": no taut wire, the force comparison would be empty";
+        tautWires += static_cast<int>((core.tensions.array() > 0).count());
         EXPECT_LE(relativeDifference(core.tau, calcSimbodyWireGeneralizedForces(simbody, state)), 1e-10)
             << m.name << ": -J^T f vs Simbody's generalized wire forces";
     }
+    EXPECT_GT(tautWires, 0) << m.name << ": no taut wire, the force comparison was empty";
 }
 
 TEST(SimbodyWireForce, AgreesWithCoreOnRandomModelsWithLoopsAndVirtualLinks) {

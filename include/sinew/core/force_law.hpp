@@ -47,8 +47,9 @@ public:
     // Tension in N, >= 0. A negative value from doCalcTension is a slack wire and becomes 0 (a wire cannot
     // push); a non-finite value throws sinew::Error.
     double calcTension(const WireState& state) const;
-    // Energy stored in the conservative part of the law, J, at this length (0 for non-conservative laws).
-    double calcPotentialEnergy(double length) const { return doCalcPotentialEnergy(length); }
+    // Energy stored in the conservative part of the law, J, at this length (0 for non-conservative laws);
+    // a non-finite value throws sinew::Error.
+    double calcPotentialEnergy(double length) const;
 
 protected:
     virtual double doCalcTension(const WireState& state) const = 0;

@@ -11,10 +11,10 @@ struct RandomModelOptions {
     enum class Topology { Chain, BinaryTree, RandomTree };
     int numLinks = 10;
     Topology topology = Topology::RandomTree;
-    JointType rootJoint = JointType::Free;  // free, ball (a pendulum) or weld
+    JointType rootJoint = JointType::Free;  // free, ball (a pendulum), pin or weld
     double pinFraction = 0.2;  // share of non-root joints that are pins instead of balls
     int numLoops = 0;          // ball closures between random link pairs, assembled at the default pose
-    int numWires = 20;         // wires spanning 1 to 3 joints
+    int numWires = 20;         // wires spanning 1 to 3 joints (0 in a one-link model)
     int maxViaPoints = 2;
     int numVirtualLinks = 0;   // each carries a forked wire: two heads in, one tail out
     double damping = 1.0;      // N*s/m on every wire (0 for conservative models)
