@@ -50,7 +50,15 @@ std::shared_ptr<const ForceLaw> ForceLawRegistry::create(const std::string& type
     }
     // A fresh copy tracks what this factory reads, whatever earlier reads of `parameters` marked.
     const ForceLawParameters tracked(parameters.getAll());
-    std::shared_ptr<const ForceLaw> law = factory(tracked);
+    std::shared_ptr<const ForceLaw> law;
+    try {
+        law = factory(tracked);
+    } catch (const Error& e) {
+        // A misspelt required parameter fails as "missing"; listing what was given shows the typo.
+        std::string given;
+        for (const auto& entry : parameters.getAll()) given += (given.empty() ? "" : ", ") + entry.first;
+        throw Error("force law '" + type + "': " + e.what() + " (given: " + (given.empty() ? "none" : given) + ")");
+    }
     const std::vector<std::string> unread = tracked.findUnread();
     if (!unread.empty()) {
         std::string names;

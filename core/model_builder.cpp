@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -23,16 +24,23 @@ void requireName(const std::string& where, const std::string& kind, const std::s
     if (name.empty()) throw ModelError(where, kind + " needs a non-empty name");
 }
 
-// Rotation taking F's z axis onto `axis` (pin joints rotate about F's z, as Simbody's Pin does).
+// Rotation taking F's z axis onto `axis` (pin joints rotate about F's z, as Simbody's Pin does). Its z column
+// is the unit axis bit for bit, and an axis that is already unit is not renormalised: the model writer stores
+// that column as the axis, and any drift in its last bits would change the model on every write and read.
 Eigen::Matrix3d rotationWithZAlong(const Eigen::Vector3d& axis) {
-    return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis.normalized()).toRotationMatrix();
+    const bool isUnit = std::abs(axis.squaredNorm() - 1) <= 8 * std::numeric_limits<double>::epsilon();
+    const Eigen::Vector3d z = isUnit ? axis : axis.normalized();
+    Eigen::Matrix3d R = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), z).toRotationMatrix();
+    R.col(2) = z;
+    return R;
 }
 
 Eigen::Vector4d quaternionFromRotationVector(const Eigen::Vector3d& rotation) {
     const double angle = rotation.norm();
     const Eigen::Quaterniond q = angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, rotation / angle))
                                            : Eigen::Quaterniond::Identity();
-    return Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+    // q and -q are the same rotation; w >= 0 is the one a written model (rotation angle <= pi) reads back as.
+    return (q.w() < 0 ? -1.0 : 1.0) * Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
 }
 
 void checkMassProperties(const LinkSpec& link, bool welded) {
@@ -50,6 +58,9 @@ void checkMassProperties(const LinkSpec& link, bool welded) {
             throw ModelError(link.where, "link '" + link.name + "': a massless link must have zero inertia");
         return;
     }
+    // The eigensolver reads one triangle only, so a non-symmetric inertia would otherwise pass unchecked.
+    if (!I.isApprox(I.transpose(), 1e-12))
+        throw ModelError(link.where, "link '" + link.name + "': inertia is not symmetric");
     const Eigen::Vector3d eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues();
     if (!(eig.minCoeff() > 0))
         throw ModelError(link.where, "link '" + link.name + "': inertia is not positive definite (smallest principal "
@@ -133,6 +144,11 @@ Model ModelBuilder::build() const {
         if (js.initialAngle && !std::isfinite(*js.initialAngle))
             throw ModelError(js.where, label + ": initial_angle must be finite");
     }
+    // A virtual link's 6-DOF joint takes the virtual link's name.
+    for (const VirtualLinkSpec& v : virtualLinks_)
+        if (jointWhere.count(v.name))
+            throw ModelError(v.where, "virtual link '" + v.name + "' has the name of joint '" + v.name + "' (" +
+                                          jointWhere.at(v.name) + "); its own joint takes that name");
     for (const LinkSpec& ls : links_) {
         auto it = jointOfChild.find(ls.name);
         if (it == jointOfChild.end())
@@ -200,7 +216,9 @@ Model ModelBuilder::build() const {
             case JointType::Pin: defaultQ.push_back(js.initialAngle.value_or(0.0)); break;
             case JointType::Weld: break;
         }
-        appendJoint(joint, Link{ls.name, ls.mass, ls.com_B, ls.inertia_Bcom, false});
+        // Exactly symmetric (an inertia computed as R D R^T is not), as the model file stores one triangle.
+        const Eigen::Matrix3d inertia_Bcom = 0.5 * (ls.inertia_Bcom + ls.inertia_Bcom.transpose());
+        appendJoint(joint, Link{ls.name, ls.mass, ls.com_B, inertia_Bcom, false});
     }
     for (const VirtualLinkSpec& v : virtualLinks_) {
         Joint joint;
@@ -218,8 +236,8 @@ Model ModelBuilder::build() const {
 
     auto resolveLink = [&](const std::string& where, const std::string& owner, const std::string& name) {
         if (name == "ground")
-            throw ModelError(where, owner + ": points cannot be on ground; hang the model with a joint to ground or "
-                                            "the --hang-by option");
+            throw ModelError(where, owner + ": 'ground' is not a link; attach to a link (fix a link to ground with a "
+                                            "weld joint, or simulate with --hang-by)");
         auto it = linkIndex.find(name);
         if (it == linkIndex.end()) throw ModelError(where, owner + ": unknown link '" + name + "'");
         return it->second;
@@ -293,7 +311,7 @@ Model ModelBuilder::build() const {
         } catch (const ModelError&) {
             throw;
         } catch (const Error& e) {
-            throw ModelError(ws.where, label + ": " + e.what());
+            throw ModelError(ws.lawWhere.empty() ? ws.where : ws.lawWhere, label + ": " + e.what());
         }
         std::set<int, std::greater<int>> support;
         for (int k = 0; k < wire.numPoints; ++k)

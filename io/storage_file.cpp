@@ -1,6 +1,7 @@
 #include "sinew/io/storage_file.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -44,7 +45,9 @@ StorageTable readStorageFile(const std::string& path) {
         if (lineNumber == 1) table.name = line;
         if (line.rfind("inDegrees=", 0) == 0) table.inDegrees = line.substr(10) == "yes";
     }
-    if (!sawEnd) throw Error(path + ": no 'endheader' line; not an OpenSim storage file");
+    if (!sawEnd)
+        throw Error(path + ":" + std::to_string(lineNumber) + ": reached the end without an 'endheader' line; not an "
+                    "OpenSim storage file");
     if (!std::getline(in, line)) throw Error(path + ":" + std::to_string(lineNumber + 1) + ": missing column labels");
     ++lineNumber;
     {
@@ -62,13 +65,12 @@ StorageTable readStorageFile(const std::string& path) {
         std::vector<double> values;
         std::string field;
         while (fields >> field) {
-            try {
-                std::size_t used = 0;
-                values.push_back(std::stod(field, &used));
-                if (used != field.size()) throw std::invalid_argument(field);
-            } catch (const std::exception&) {
+            // strtod, unlike stod, accepts the subnormal numbers the writer can produce.
+            char* end = nullptr;
+            const double value = std::strtod(field.c_str(), &end);
+            if (end != field.c_str() + field.size())
                 throw Error(path + ":" + std::to_string(lineNumber) + ": '" + field + "' is not a number");
-            }
+            values.push_back(value);
         }
         if (values.size() != table.columns.size() + 1)
             throw Error(path + ":" + std::to_string(lineNumber) + ": " + std::to_string(values.size()) +

@@ -92,7 +92,7 @@ private:
 
     int readInt(const YAML::Node& node, const std::string& key) const {
         const double value = readNumber(node, key);
-        if (value != std::floor(value)) fail(node, "field '" + key + "' must be a whole number");
+        if (value != std::floor(value) || std::abs(value) > 1e9) fail(node, "field '" + key + "' must be a whole number");
         return static_cast<int>(value);
     }
 
@@ -202,6 +202,7 @@ private:
             else wire.law.parameters.set(key, readNumbers(entry.second, key));
         }
         if (wire.law.type.empty()) fail(law, owner + ": force_law needs a 'type'");
+        wire.lawWhere = where(law);
         return wire;
     }
 };

@@ -7,10 +7,9 @@
 #include <vector>
 
 #include "sinew/core/model.hpp"
+#include "sinew/core/spatial.hpp"
 
 namespace sinew {
-
-using SpatialVector = Eigen::Matrix<double, 6, 1>;  // [angular; linear]
 
 struct Data {
     explicit Data(const Model& model);

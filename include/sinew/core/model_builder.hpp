@@ -60,6 +60,7 @@ struct WireSpec {
     std::vector<WirePointSpec> points;
     ForceLawSpec law;
     std::string where;
+    std::string lawWhere;  // where the force law is written, for its errors; `where` when empty
 };
 
 class ModelBuilder {
