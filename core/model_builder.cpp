@@ -20,8 +20,12 @@ void requireFinite(const std::string& where, const std::string& what, const Eige
     if (!isFinite(m)) throw ModelError(where, what + " must be finite (got NaN or inf)");
 }
 
-void requireName(const std::string& where, const std::string& kind, const std::string& name) {
+// Records `name` of a `kind` as defined at `where`; throws for an empty or already-used name.
+void claimName(std::map<std::string, std::string>& defined, const std::string& kind, const std::string& name,
+               const std::string& where) {
     if (name.empty()) throw ModelError(where, kind + " needs a non-empty name");
+    auto [it, fresh] = defined.emplace(name, where);
+    if (!fresh) throw ModelError(where, "duplicate " + kind + " name '" + name + "' (first defined at " + it->second + ")");
 }
 
 // Rotation taking F's z axis onto `axis` (pin joints rotate about F's z, as Simbody's Pin does). Its z column
@@ -89,10 +93,8 @@ Model ModelBuilder::build() const {
     // Names: links and virtual links share one namespace; "ground" is reserved.
     std::map<std::string, std::string> linkWhere;  // name -> where
     auto claimLinkName = [&](const std::string& name, const std::string& where, const char* kind) {
-        requireName(where, kind, name);
         if (name == "ground") throw ModelError(where, std::string(kind) + " cannot be called 'ground' (reserved)");
-        auto [it, fresh] = linkWhere.emplace(name, where);
-        if (!fresh) throw ModelError(where, "duplicate link name '" + name + "' (first defined at " + it->second + ")");
+        claimName(linkWhere, "link", name, where);
     };
     std::map<std::string, std::size_t> linkSpecIndex;
     for (std::size_t i = 0; i < links_.size(); ++i) {
@@ -109,9 +111,7 @@ Model ModelBuilder::build() const {
     std::map<std::string, std::string> jointWhere;
     for (std::size_t j = 0; j < joints_.size(); ++j) {
         const JointSpec& js = joints_[j];
-        requireName(js.where, "joint", js.name);
-        auto [it, fresh] = jointWhere.emplace(js.name, js.where);
-        if (!fresh) throw ModelError(js.where, "duplicate joint name '" + js.name + "' (first defined at " + it->second + ")");
+        claimName(jointWhere, "joint", js.name, js.where);
         const std::string label = "joint '" + js.name + "'";
         if (!linkSpecIndex.count(js.child))
             throw ModelError(js.where, label + ": unknown child link '" + js.child + "'" +
@@ -246,9 +246,7 @@ Model ModelBuilder::build() const {
     // Loops.
     std::map<std::string, std::string> loopWhere;
     for (const LoopSpec& ls : loops_) {
-        requireName(ls.where, "loop", ls.name);
-        auto [it, fresh] = loopWhere.emplace(ls.name, ls.where);
-        if (!fresh) throw ModelError(ls.where, "duplicate loop name '" + ls.name + "' (first defined at " + it->second + ")");
+        claimName(loopWhere, "loop", ls.name, ls.where);
         const std::string label = "loop '" + ls.name + "'";
         Loop loop{ls.name, resolveLink(ls.where, label, ls.linkA), ls.p_A, resolveLink(ls.where, label, ls.linkB), ls.p_B};
         requireFinite(ls.where, label + ": point_a", ls.p_A);
@@ -280,9 +278,7 @@ Model ModelBuilder::build() const {
     // Wires.
     std::map<std::string, std::string> wireWhere;
     for (const WireSpec& ws : wires_) {
-        requireName(ws.where, "wire", ws.name);
-        auto [it, fresh] = wireWhere.emplace(ws.name, ws.where);
-        if (!fresh) throw ModelError(ws.where, "duplicate wire name '" + ws.name + "' (first defined at " + it->second + ")");
+        claimName(wireWhere, "wire", ws.name, ws.where);
         const std::string label = "wire '" + ws.name + "'";
         if (ws.points.size() < 2)
             throw ModelError(ws.where, label + " has " + std::to_string(ws.points.size()) +

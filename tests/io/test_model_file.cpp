@@ -9,6 +9,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/core/random_model.hpp"
 #include "sinew/io/model_file.hpp"
+#include "support/error_assertions.hpp"
 
 namespace sinew {
 namespace {
@@ -96,19 +97,8 @@ std::string loop(const std::string& name, const std::string& linkA, const std::s
 // Passes when loading `text` throws a ModelError whose message starts with "bad.yaml:<line>: " and contains
 // every one of `words`.
 ::testing::AssertionResult rejectsAt(const std::string& text, int line, const std::vector<std::string>& words) {
-    try {
-        readModelText(text, "bad.yaml");
-    } catch (const ModelError& e) {
-        const std::string message = e.what();
-        const std::string prefix = "bad.yaml:" + std::to_string(line) + ": ";
-        if (message.rfind(prefix, 0) != 0)
-            return ::testing::AssertionFailure() << "expected the error at '" << prefix << "', got: " << message;
-        for (const std::string& word : words)
-            if (message.find(word) == std::string::npos)
-                return ::testing::AssertionFailure() << "'" << word << "' is missing from: " << message;
-        return ::testing::AssertionSuccess();
-    }
-    return ::testing::AssertionFailure() << "the model was accepted:\n" << text;
+    return test::throwsErrorAt<ModelError>([&] { readModelText(text, "bad.yaml"); },
+                                           "bad.yaml:" + std::to_string(line) + ": ", words, text);
 }
 
 // The same for the base model with line `line` replaced, when the error belongs on that line.

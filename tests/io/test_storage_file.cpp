@@ -11,6 +11,7 @@
 
 #include "sinew/core/error.hpp"
 #include "sinew/io/storage_file.hpp"
+#include "support/error_assertions.hpp"
 
 namespace sinew {
 namespace {
@@ -62,19 +63,8 @@ TEST(StorageFile, RoundTripIsBitIdentical) {
 // when `line` is 0) and contains `words`.
 ::testing::AssertionResult rejectsAt(const std::string& text, int line, const std::vector<std::string>& words) {
     const std::string path = writeText(text);
-    try {
-        readStorageFile(path);
-    } catch (const Error& e) {
-        const std::string message = e.what();
-        const std::string prefix = path + ":" + (line > 0 ? std::to_string(line) + ":" : "");
-        if (message.rfind(prefix, 0) != 0)
-            return ::testing::AssertionFailure() << "expected the error at '" << prefix << "', got: " << message;
-        for (const std::string& word : words)
-            if (message.find(word) == std::string::npos)
-                return ::testing::AssertionFailure() << "'" << word << "' is missing from: " << message;
-        return ::testing::AssertionSuccess();
-    }
-    return ::testing::AssertionFailure() << "the file was accepted:\n" << text;
+    return test::throwsErrorAt([&] { readStorageFile(path); },
+                               path + ":" + (line > 0 ? std::to_string(line) + ":" : ""), words, text);
 }
 
 const std::string kHeader = "motion\nversion=1\nnRows=2\nnColumns=3\ninDegrees=no\nendheader\n";  // lines 1-6
