@@ -36,8 +36,7 @@ void calcWireJacobian(const Model& model, Data& data, Eigen::Ref<Eigen::MatrixXd
     }
 }
 
-void calcWireGeneralizedForces(const Model& model, Data& data, const Eigen::VectorXd& tensions,
-                               Eigen::Ref<Eigen::VectorXd> tau) {
+void calcWireLinkForces(const Model& model, Data& data, const Eigen::VectorXd& tensions) {
     const std::vector<WirePoint>& points = model.getWirePoints();
     for (SpatialVector& F : data.F_G) F.setZero();
     for (int w = 0; w < model.getNumWires(); ++w) {
@@ -47,6 +46,11 @@ void calcWireGeneralizedForces(const Model& model, Data& data, const Eigen::Vect
             addPointForce(data, points[kk].link, data.p_GP[kk], -tensions[w] * data.dLdp_GP[kk]);
         }
     }
+}
+
+void calcWireGeneralizedForces(const Model& model, Data& data, const Eigen::VectorXd& tensions,
+                               Eigen::Ref<Eigen::VectorXd> tau) {
+    calcWireLinkForces(model, data, tensions);
     calcGeneralizedForcesFromLinkForces(model, data, tau);
 }
 

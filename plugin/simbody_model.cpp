@@ -69,8 +69,12 @@ SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
     }
 
     for (const Loop& loop : model_.getLoops())
-        SimTK::Constraint::Ball(matter_->updMobilizedBody(mobilizedBodies_[static_cast<std::size_t>(loop.linkA)]), toVec3(loop.p_A),
-                                matter_->updMobilizedBody(mobilizedBodies_[static_cast<std::size_t>(loop.linkB)]), toVec3(loop.p_B));
+        loopConstraints_.push_back(
+            SimTK::Constraint::Ball(matter_->updMobilizedBody(mobilizedBodies_[static_cast<std::size_t>(loop.linkA)]),
+                                    toVec3(loop.p_A),
+                                    matter_->updMobilizedBody(mobilizedBodies_[static_cast<std::size_t>(loop.linkB)]),
+                                    toVec3(loop.p_B))
+                .getConstraintIndex());
 
     if (!options.hangBy.empty()) {
         const int link = model_.findLinkIndex(options.hangBy);
@@ -103,6 +107,10 @@ SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
 
 const SimTK::MobilizedBody& SimbodyModel::getMobilizedBody(int link) const {
     return matter_->getMobilizedBody(mobilizedBodies_.at(static_cast<std::size_t>(link)));
+}
+
+const SimTK::Constraint::Ball& SimbodyModel::getLoopConstraint(int loop) const {
+    return SimTK::Constraint::Ball::downcast(matter_->getConstraint(loopConstraints_.at(static_cast<std::size_t>(loop))));
 }
 
 const SimTK::Force& SimbodyModel::getWireForceElement(int wire) const {

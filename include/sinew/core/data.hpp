@@ -3,7 +3,6 @@
 // allocate nothing. One Data per thread.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <Eigen/StdVector>
 #include <vector>
 
 #include "sinew/core/model.hpp"
@@ -35,7 +34,7 @@ struct Data {
     Eigen::VectorXd wireSpeed;   // m/s, positive when lengthening
 
     // Workspace for tip-to-base force passes, per link: spatial force [moment about ground origin; force].
-    std::vector<SpatialVector, Eigen::aligned_allocator<SpatialVector>> F_G;
+    std::vector<SpatialVector> F_G;
 };
 
 }  // namespace sinew

@@ -13,6 +13,10 @@ namespace sinew {
 // links between the wire's points and the root).
 void calcWireJacobian(const Model& model, Data& data, Eigen::Ref<Eigen::MatrixXd> J);
 
+// The spatial forces (moment about the ground origin; force) that tensions f >= 0 (numWires, N) exert on
+// each link, into Data::F_G. Needs calcWirePaths.
+void calcWireLinkForces(const Model& model, Data& data, const Eigen::VectorXd& tensions);
+
 // The generalized forces (nu) that tensions f >= 0 (numWires, N) exert: tau = -J^T f, since a tension
 // shortens its wire. Computed in one tip-to-base pass without forming J. Needs calcWirePaths.
 void calcWireGeneralizedForces(const Model& model, Data& data, const Eigen::VectorXd& tensions,

@@ -33,6 +33,10 @@ public:
     const SimTK::MultibodySystem& getSystem() const { return *system_; }
     SimTK::MultibodySystem& updSystem() { return *system_; }
     const SimTK::SimbodyMatterSubsystem& getMatter() const { return *matter_; }
+    // For adding force elements of one's own (then call updSystem().realizeTopology()).
+    SimTK::GeneralForceSubsystem& updForces() { return *forces_; }
+    // Loop k's Constraint::Ball.
+    const SimTK::Constraint::Ball& getLoopConstraint(int loop) const;
     const SimTK::MobilizedBody& getMobilizedBody(int link) const;
     // Wire w's force element and its implementation (for its length, speed and tension).
     const SimTK::Force& getWireForceElement(int wire) const;
@@ -52,6 +56,7 @@ private:
     std::unique_ptr<SimTK::GeneralForceSubsystem> forces_;
     std::vector<SimTK::MobilizedBodyIndex> mobilizedBodies_;
     std::vector<SimTK::ForceIndex> wireForces_;
+    std::vector<SimTK::ConstraintIndex> loopConstraints_;
     std::vector<const WireForce*> wireImplementations_;
 };
 

@@ -1,0 +1,57 @@
+#pragma once
+// O(N) forward dynamics of a closed-chain model by assembly-disassembly (Featherstone's divide-and-conquer
+// algorithm in the multi-handle form that Yamane and Nakamura's assembly-disassembly computes; equations and
+// conventions in docs/closed-chain.md). Simbody-free.
+#include <Eigen/Core>
+#include <vector>
+
+#include "sinew/core/assembly_schedule.hpp"
+#include "sinew/core/data.hpp"
+#include "sinew/core/model.hpp"
+#include "sinew/core/spatial.hpp"
+
+namespace sinew {
+
+// Buffers for one schedule, sized at construction; calcForwardDynamics allocates nothing.
+struct ForwardDynamicsData {
+    explicit ForwardDynamicsData(const Model& model, const AssemblySchedule& schedule);
+
+    // Per body (numBodies): spatial inertia about the ground origin, its inverse, spatial velocity, and
+    // the bias force p = v x* I v - f_external.
+    std::vector<Matrix6d> inertia;
+    std::vector<Matrix6d> inertiaInverse;
+    std::vector<SpatialVector> velocity;
+    std::vector<SpatialVector> bias;
+    // Per assembly joint: motion of beta relative to alpha, S u (6), and the bias c = dS/dt u.
+    std::vector<SpatialVector> jointVelocity;
+    std::vector<SpatialVector> jointBias;
+    // Per subassembly: the handle equations a_h = sum_k Phi_hk f_k + b_h, Phi stored h x h row-major.
+    std::vector<std::vector<Matrix6d>> Phi;
+    std::vector<std::vector<SpatialVector>> b;
+    // Per operation: Y = T (T^T W T)^-1 T^T and the force offset g of the joint it joins or closes.
+    std::vector<Matrix6d> Y;
+    std::vector<SpatialVector> g;
+    // Per handle (2 x assembly joints): the spatial force on the handle's body through its joint.
+    std::vector<SpatialVector> handleForce;
+
+    // Outputs.
+    Eigen::VectorXd udot;                      // (nu) generalized accelerations
+    std::vector<SpatialVector> bodyAcceleration;  // (numBodies) spatial accelerations, ground frame, origin
+    std::vector<Eigen::Vector3d> loopForce;    // (numLoops) N, force on link B at the loop point, in ground
+    // Constraint directions that repeat others (e.g. a second ball loop on the axis of a hinge): solved in
+    // the least-squares sense, accelerations exact, the loop forces along them minimum-norm.
+    int redundantConstraints = 0;
+    // Smallest over the loop closures of (smallest kept eigenvalue / largest) of T^T W T: near the 1e-9
+    // cutoff, a loop is nearly redundant and its force, and the accelerations, lose digits accordingly.
+    double loopConditioning = 1;
+};
+
+// udot for generalized forces `tau` (nu), gravity, and external spatial forces on the links, `linkForces`
+// (numLinks, [moment about the ground origin; force], e.g. from wires: see calcWireLinkForces). Needs
+// calcPositionKinematics and calcVelocityKinematics in `data`.
+void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, const Data& data,
+                         const Eigen::VectorXd& tau,
+                         const std::vector<SpatialVector>& linkForces,
+                         ForwardDynamicsData& fd);
+
+}  // namespace sinew
