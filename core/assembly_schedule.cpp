@@ -1,6 +1,7 @@
 #include "sinew/core/assembly_schedule.hpp"
 
 #include <algorithm>
+#include <set>
 
 #include "sinew/core/error.hpp"
 
@@ -20,7 +21,7 @@ std::vector<int> without(const std::vector<int>& handles, int a, int b = -1) {
 
 }  // namespace
 
-AssemblySchedule::AssemblySchedule(const Model& model, Kind /*kind*/) {
+AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) : kind_(kind) {
     linkBody_.assign(static_cast<std::size_t>(model.getNumLinks()), kGroundBody);
     for (int i = 0; i < model.getNumLinks(); ++i) {
         const Link& link = model.getLink(i);
@@ -28,17 +29,16 @@ AssemblySchedule::AssemblySchedule(const Model& model, Kind /*kind*/) {
             throw Error("model '" + model.getName() + "': virtual link '" + link.name +
                         "' is massless; the assembly-disassembly solver does not treat virtual links yet");
         const Joint& joint = model.getJoint(i);
+        const std::size_t l = static_cast<std::size_t>(i);
         if (joint.type == JointType::Weld) {
-            linkBody_[static_cast<std::size_t>(i)] =
-                joint.parent == kGround ? kGroundBody : linkBody_[static_cast<std::size_t>(joint.parent)];
-            if (linkBody_[static_cast<std::size_t>(i)] != kGroundBody)
-                bodyLinks_[static_cast<std::size_t>(linkBody_[static_cast<std::size_t>(i)])].push_back(i);
+            linkBody_[l] = joint.parent == kGround ? kGroundBody : linkBody_[static_cast<std::size_t>(joint.parent)];
+            if (linkBody_[l] != kGroundBody) bodyLinks_[static_cast<std::size_t>(linkBody_[l])].push_back(i);
             continue;
         }
-        linkBody_[static_cast<std::size_t>(i)] = static_cast<int>(bodyLinks_.size());
+        linkBody_[l] = static_cast<int>(bodyLinks_.size());
         bodyLinks_.push_back({i});
         const int parentBody = joint.parent == kGround ? kGroundBody : linkBody_[static_cast<std::size_t>(joint.parent)];
-        joints_.push_back({false, i, parentBody, linkBody_[static_cast<std::size_t>(i)]});
+        joints_.push_back({AssemblyJoint::Kind::Tree, i, parentBody, linkBody_[l]});
     }
     const int numTreeJoints = static_cast<int>(joints_.size());
     for (int k = 0; k < model.getNumLoops(); ++k) {
@@ -49,8 +49,10 @@ AssemblySchedule::AssemblySchedule(const Model& model, Kind /*kind*/) {
             throw Error("model '" + model.getName() + "': loop '" + loop.name + "' joins links '" +
                         model.getLink(loop.linkA).name + "' and '" + model.getLink(loop.linkB).name +
                         "', which are welded together");
-        joints_.push_back({true, k, a, b});
+        joints_.push_back({AssemblyJoint::Kind::Loop, k, a, b});
     }
+    if (hangLink >= 0 && linkBody_[static_cast<std::size_t>(hangLink)] != kGroundBody)
+        joints_.push_back({AssemblyJoint::Kind::Hang, hangLink, kGroundBody, linkBody_[static_cast<std::size_t>(hangLink)]});
 
     // Leaves: each body with the handles of the joints that touch it; then ground.
     const int numBodies = getNumBodies();
@@ -60,47 +62,117 @@ AssemblySchedule::AssemblySchedule(const Model& model, Kind /*kind*/) {
         handles_[static_cast<std::size_t>(leafOf(joints_[static_cast<std::size_t>(j)].alphaBody))].push_back(2 * j);
         handles_[static_cast<std::size_t>(leafOf(joints_[static_cast<std::size_t>(j)].betaBody))].push_back(2 * j + 1);
     }
+    mergedInto_.resize(handles_.size());
+    for (std::size_t s = 0; s < mergedInto_.size(); ++s) mergedInto_[s] = static_cast<int>(s);
+    closed_.assign(joints_.size(), false);
+    levelStarts_.push_back(0);
 
-    // Serial schedule: tree joints from the tips to the root (bodies are numbered parents first), each loop
-    // closed in the first subassembly that holds both of its ends.
-    std::vector<int> subOfBody(static_cast<std::size_t>(numBodies + 1));
-    for (int b = 0; b <= numBodies; ++b) subOfBody[static_cast<std::size_t>(b)] = b;
-    auto currentSub = [&](int body) { return subOfBody[static_cast<std::size_t>(leafOf(body))]; };
-    std::vector<bool> closed(joints_.size(), false);
-    for (int j = numTreeJoints - 1; j >= 0; --j) {
-        const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
-        AssemblyOperation join;
-        join.joint = j;
-        join.first = currentSub(joint.alphaBody);
-        join.second = currentSub(joint.betaBody);
-        join.result = static_cast<int>(handles_.size());
-        join.alphaPosition = positionOf(handles_[static_cast<std::size_t>(join.first)], 2 * j);
-        join.betaPosition = positionOf(handles_[static_cast<std::size_t>(join.second)], 2 * j + 1);
-        std::vector<int> merged = without(handles_[static_cast<std::size_t>(join.first)], 2 * j);
-        const std::vector<int> fromSecond = without(handles_[static_cast<std::size_t>(join.second)], 2 * j + 1);
-        merged.insert(merged.end(), fromSecond.begin(), fromSecond.end());
-        handles_.push_back(merged);
-        operations_.push_back(join);
-        for (int& sub : subOfBody)
-            if (sub == join.first || sub == join.second) sub = join.result;
-
-        for (int l = numTreeJoints; l < static_cast<int>(joints_.size()); ++l) {
-            const AssemblyJoint& loop = joints_[static_cast<std::size_t>(l)];
-            if (closed[static_cast<std::size_t>(l)] || currentSub(loop.alphaBody) != currentSub(loop.betaBody)) continue;
-            closed[static_cast<std::size_t>(l)] = true;
-            AssemblyOperation close;
-            close.isClose = true;
-            close.joint = l;
-            close.first = currentSub(loop.alphaBody);
-            close.result = static_cast<int>(handles_.size());
-            const std::vector<int>& before = handles_[static_cast<std::size_t>(close.first)];
-            close.alphaPosition = positionOf(before, 2 * l);
-            close.betaPosition = positionOf(before, 2 * l + 1);
-            handles_.push_back(without(before, 2 * l, 2 * l + 1));
-            operations_.push_back(close);
-            for (int& sub : subOfBody)
-                if (sub == close.first) sub = close.result;
+    if (kind == Kind::Serial) {
+        // Bodies are numbered parents first, so the reverse order visits tips first.
+        for (int j = numTreeJoints - 1; j >= 0; --j) {
+            emitJoin(j);
+            levelStarts_.push_back(static_cast<int>(operations_.size()));
+            closeReadyLoops(false);
         }
+    } else {
+        std::vector<int> pending(static_cast<std::size_t>(numTreeJoints));
+        for (int j = 0; j < numTreeJoints; ++j) pending[static_cast<std::size_t>(j)] = j;
+        while (!pending.empty()) {
+            // Join the pairs whose result has the fewest handles first; each subassembly once per level.
+            auto cost = [&](int j) {
+                const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
+                return handles_[static_cast<std::size_t>(findCurrent(leafOf(joint.alphaBody)))].size() +
+                       handles_[static_cast<std::size_t>(findCurrent(leafOf(joint.betaBody)))].size();
+            };
+            std::stable_sort(pending.begin(), pending.end(), [&](int x, int y) { return cost(x) < cost(y); });
+            std::set<int> busy;
+            std::vector<int> later;
+            for (int j : pending) {
+                const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
+                const int a = findCurrent(leafOf(joint.alphaBody));
+                const int b = findCurrent(leafOf(joint.betaBody));
+                if (busy.count(a) || busy.count(b)) {
+                    later.push_back(j);
+                    continue;
+                }
+                emitJoin(j);
+                busy.insert({a, b, operations_.back().result});
+            }
+            levelStarts_.push_back(static_cast<int>(operations_.size()));
+            pending = later;
+            closeReadyLoops(true);
+        }
+    }
+}
+
+int AssemblySchedule::findCurrent(int subassembly) const {
+    int root = subassembly;
+    while (mergedInto_[static_cast<std::size_t>(root)] != root) root = mergedInto_[static_cast<std::size_t>(root)];
+    for (int s = subassembly; s != root;) {
+        const int next = mergedInto_[static_cast<std::size_t>(s)];
+        mergedInto_[static_cast<std::size_t>(s)] = root;
+        s = next;
+    }
+    return root;
+}
+
+void AssemblySchedule::emitJoin(int j) {
+    const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
+    const int groundLeaf = getGroundLeaf();
+    AssemblyOperation join;
+    join.joint = j;
+    join.first = findCurrent(joint.alphaBody == kGroundBody ? groundLeaf : joint.alphaBody);
+    join.second = findCurrent(joint.betaBody == kGroundBody ? groundLeaf : joint.betaBody);
+    join.result = static_cast<int>(handles_.size());
+    join.alphaPosition = positionOf(handles_[static_cast<std::size_t>(join.first)], 2 * j);
+    join.betaPosition = positionOf(handles_[static_cast<std::size_t>(join.second)], 2 * j + 1);
+    std::vector<int> merged = without(handles_[static_cast<std::size_t>(join.first)], 2 * j);
+    const std::vector<int> fromSecond = without(handles_[static_cast<std::size_t>(join.second)], 2 * j + 1);
+    merged.insert(merged.end(), fromSecond.begin(), fromSecond.end());
+    handles_.push_back(merged);
+    mergedInto_.push_back(join.result);
+    mergedInto_[static_cast<std::size_t>(join.first)] = join.result;
+    mergedInto_[static_cast<std::size_t>(join.second)] = join.result;
+    operations_.push_back(join);
+}
+
+void AssemblySchedule::emitClose(int j) {
+    const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
+    AssemblyOperation close;
+    close.isClose = true;
+    close.joint = j;
+    close.first = findCurrent(joint.alphaBody == kGroundBody ? getGroundLeaf() : joint.alphaBody);
+    close.result = static_cast<int>(handles_.size());
+    const std::vector<int> before = handles_[static_cast<std::size_t>(close.first)];
+    close.alphaPosition = positionOf(before, 2 * j);
+    close.betaPosition = positionOf(before, 2 * j + 1);
+    handles_.push_back(without(before, 2 * j, 2 * j + 1));
+    mergedInto_.push_back(close.result);
+    mergedInto_[static_cast<std::size_t>(close.first)] = close.result;
+    closed_[static_cast<std::size_t>(j)] = true;
+    operations_.push_back(close);
+}
+
+// Closes every loop (and the hang) whose ends now share a subassembly: the smallest one that contains both.
+// Serially one after another; balanced, one close per subassembly per level.
+void AssemblySchedule::closeReadyLoops(bool oneCloseLevelPerSubassembly) {
+    const int groundLeaf = getGroundLeaf();
+    auto current = [&](int body) { return findCurrent(body == kGroundBody ? groundLeaf : body); };
+    bool closedAny = true;
+    while (closedAny) {
+        closedAny = false;
+        std::set<int> busy;
+        for (std::size_t j = 0; j < joints_.size(); ++j) {
+            const AssemblyJoint& joint = joints_[j];
+            if (joint.kind == AssemblyJoint::Kind::Tree || closed_[j]) continue;
+            const int s = current(joint.alphaBody);
+            if (s != current(joint.betaBody) || busy.count(s)) continue;
+            emitClose(static_cast<int>(j));
+            closedAny = true;
+            if (oneCloseLevelPerSubassembly) busy.insert(operations_.back().result);
+            else levelStarts_.push_back(static_cast<int>(operations_.size()));
+        }
+        if (oneCloseLevelPerSubassembly && closedAny) levelStarts_.push_back(static_cast<int>(operations_.size()));
     }
 }
 

@@ -66,9 +66,9 @@ void calcVelocityKinematics(const Model& model, Data& data, const Eigen::VectorX
 }
 
 void projectOntoJoint(const Joint& joint, const Eigen::Matrix3d& R_GF, const Eigen::Vector3d& p_GM,
-                      const SpatialVector& F_G, double* tauJoint) {
+                      const Eigen::Vector3d& p_ref, const SpatialVector& F_G, double* tauJoint) {
     const Eigen::Vector3d f = F_G.tail<3>();
-    const Eigen::Vector3d momentAboutJoint = F_G.head<3>() - p_GM.cross(f);
+    const Eigen::Vector3d momentAboutJoint = shiftForce(F_G, p_GM - p_ref).head<3>();
     switch (joint.type) {
         case JointType::Free:
             Eigen::Map<Eigen::Vector3d>{tauJoint} = R_GF.transpose() * momentAboutJoint;
@@ -84,9 +84,16 @@ void calcGeneralizedForcesFromLinkForces(const Model& model, Data& data, Eigen::
     for (int i = model.getNumLinks() - 1; i >= 0; --i) {
         const Joint& joint = model.getJoint(i);
         const std::size_t b = static_cast<std::size_t>(i);
-        projectOntoJoint(joint, data.R_GF[b], data.p_GM[b], data.F_G[b], tau.data() + joint.uStart);
-        if (joint.parent != kGround) data.F_G[static_cast<std::size_t>(joint.parent)] += data.F_G[b];
+        projectOntoJoint(joint, data.R_GF[b], data.p_GM[b], data.p_GB[b], data.F_G[b], tau.data() + joint.uStart);
+        addToParent(model, data, i);
     }
+}
+
+void addToParent(const Model& model, Data& data, int link) {
+    const int parent = model.getJoint(link).parent;
+    if (parent == kGround) return;
+    const std::size_t b = static_cast<std::size_t>(link), p = static_cast<std::size_t>(parent);
+    data.F_G[p] += shiftForce(data.F_G[b], data.p_GB[p] - data.p_GB[b]);
 }
 
 Eigen::VectorXd integrateCoordinates(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& u,

@@ -8,7 +8,7 @@ namespace {
 // Adds the spatial force (about the ground origin) of point force f_G applied at p_G to its link.
 void addPointForce(Data& data, int link, const Eigen::Vector3d& p_G, const Eigen::Vector3d& f_G) {
     SpatialVector& F = data.F_G[static_cast<std::size_t>(link)];
-    F.head<3>() += p_G.cross(f_G);
+    F.head<3>() += (p_G - data.p_GB[static_cast<std::size_t>(link)]).cross(f_G);
     F.tail<3>() += f_G;
 }
 
@@ -29,9 +29,9 @@ void calcWireJacobian(const Model& model, Data& data, Eigen::Ref<Eigen::MatrixXd
             const Joint& joint = model.getJoint(link);
             const std::size_t b = static_cast<std::size_t>(link);
             double column[6];
-            projectOntoJoint(joint, data.R_GF[b], data.p_GM[b], data.F_G[b], column);
+            projectOntoJoint(joint, data.R_GF[b], data.p_GM[b], data.p_GB[b], data.F_G[b], column);
             for (int c = 0; c < joint.nu; ++c) J(w, joint.uStart + c) = column[c];
-            if (joint.parent != kGround) data.F_G[static_cast<std::size_t>(joint.parent)] += data.F_G[b];
+            addToParent(model, data, link);
         }
     }
 }

@@ -33,7 +33,9 @@ struct Data {
     Eigen::VectorXd wireLength;  // m
     Eigen::VectorXd wireSpeed;   // m/s, positive when lengthening
 
-    // Workspace for tip-to-base force passes, per link: spatial force [moment about ground origin; force].
+    // Per link: spatial force [moment about the link's origin p_GB; force], ground axes. Moments about the
+    // link rather than the ground origin keep their digits when the model is far from the origin. Filled
+    // by calcWireLinkForces; tip-to-base passes use it as workspace.
     std::vector<SpatialVector> F_G;
 };
 

@@ -16,28 +16,34 @@ namespace sinew {
 struct ForwardDynamicsData {
     explicit ForwardDynamicsData(const Model& model, const AssemblySchedule& schedule);
 
-    // Per body (numBodies): spatial inertia about the ground origin, its inverse, spatial velocity, and
-    // the bias force p = v x* I v - f_external.
-    std::vector<Matrix6d> inertia;
+    // Per body (numBodies), about its centre of mass (m, in ground): inverse spatial inertia, spatial
+    // velocity, and the bias force p = v x* I v - f_external.
+    std::vector<Eigen::Vector3d> massCenter;
     std::vector<Matrix6d> inertiaInverse;
     std::vector<SpatialVector> velocity;
     std::vector<SpatialVector> bias;
-    // Per assembly joint: motion of beta relative to alpha, S u (6), and the bias c = dS/dt u.
-    std::vector<SpatialVector> jointVelocity;
+    // Per assembly joint: the point its handles' quantities are taken about (m, in ground), and the bias
+    // c = dS/dt u of its relative acceleration about that point.
+    std::vector<Eigen::Vector3d> jointPoint;
     std::vector<SpatialVector> jointBias;
     // Per subassembly: the handle equations a_h = sum_k Phi_hk f_k + b_h, Phi stored h x h row-major.
     std::vector<std::vector<Matrix6d>> Phi;
     std::vector<std::vector<SpatialVector>> b;
-    // Per operation: Y = T (T^T W T)^-1 T^T and the force offset g of the joint it joins or closes.
+    // Per operation: Y = T (T^T W T)^-1 T^T and the force offset g of the joint it joins or closes; for
+    // closures, the redundant directions and conditioning found (reduced into the outputs below).
     std::vector<Matrix6d> Y;
     std::vector<SpatialVector> g;
-    // Per handle (2 x assembly joints): the spatial force on the handle's body through its joint.
+    std::vector<int> operationRedundancy;
+    std::vector<double> operationConditioning;
+    // Per handle (2 x assembly joints): the spatial force on the handle's body through its joint, about the
+    // joint's point.
     std::vector<SpatialVector> handleForce;
 
     // Outputs.
     Eigen::VectorXd udot;                      // (nu) generalized accelerations
-    std::vector<SpatialVector> bodyAcceleration;  // (numBodies) spatial accelerations, ground frame, origin
+    std::vector<SpatialVector> bodyAcceleration;  // (numBodies) spatial accelerations about massCenter, ground axes
     std::vector<Eigen::Vector3d> loopForce;    // (numLoops) N, force on link B at the loop point, in ground
+    SpatialVector hangForce = SpatialVector::Zero();  // holding the hung link: [moment about its origin; force]
     // Constraint directions that repeat others (e.g. a second ball loop on the axis of a hinge): solved in
     // the least-squares sense, accelerations exact, the loop forces along them minimum-norm.
     int redundantConstraints = 0;
@@ -47,11 +53,11 @@ struct ForwardDynamicsData {
 };
 
 // udot for generalized forces `tau` (nu), gravity, and external spatial forces on the links, `linkForces`
-// (numLinks, [moment about the ground origin; force], e.g. from wires: see calcWireLinkForces). Needs
-// calcPositionKinematics and calcVelocityKinematics in `data`.
+// (numLinks, [moment about the link's origin; force], ground axes, e.g. from wires: calcWireLinkForces). Needs
+// calcPositionKinematics and calcVelocityKinematics in `data`. `threads` > 1 shares each level of the
+// schedule between threads (useful with a Balanced schedule); the answer does not depend on it.
 void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, const Data& data,
-                         const Eigen::VectorXd& tau,
-                         const std::vector<SpatialVector>& linkForces,
-                         ForwardDynamicsData& fd);
+                         const Eigen::VectorXd& tau, const std::vector<SpatialVector>& linkForces,
+                         ForwardDynamicsData& fd, int threads = 1);
 
 }  // namespace sinew

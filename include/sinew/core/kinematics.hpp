@@ -14,16 +14,19 @@ void calcPositionKinematics(const Model& model, Data& data, const Eigen::VectorX
 // Fills Data::w_GB, v_GB from u (nu). Needs calcPositionKinematics first.
 void calcVelocityKinematics(const Model& model, Data& data, const Eigen::VectorXd& u);
 
-// Generalized forces (nu) equivalent to the spatial forces in Data::F_G (moment about the ground origin,
-// force, per link): tau = sum over links of J_link^T F. Consumes Data::F_G (it accumulates subtree forces
-// in place, tip to base). Needs calcPositionKinematics first.
+// Generalized forces (nu) equivalent to the spatial forces in Data::F_G (moment about each link's origin,
+// force): tau = sum over links of J_link^T F. Consumes Data::F_G (it accumulates subtree forces in place,
+// tip to base). Needs calcPositionKinematics first.
 void calcGeneralizedForcesFromLinkForces(const Model& model, Data& data, Eigen::Ref<Eigen::VectorXd> tau);
 
 // The generalized force (joint.nu values written at tauJoint) that a spatial force F_G (moment about the
-// ground origin; force) acting on the joint's subtree exerts on the joint, given the joint frame F's
-// orientation R_GF and the joint centre p_GM: H^T F with H the joint's motion subspace.
+// point p_ref; force; ground axes) acting on the joint's subtree exerts on the joint, given the joint frame
+// F's orientation R_GF and the joint centre p_GM: H^T F with H the joint's motion subspace.
 void projectOntoJoint(const Joint& joint, const Eigen::Matrix3d& R_GF, const Eigen::Vector3d& p_GM,
-                      const SpatialVector& F_G, double* tauJoint);
+                      const Eigen::Vector3d& p_ref, const SpatialVector& F_G, double* tauJoint);
+
+// Adds a link's spatial force (moment about its origin) to its parent's (moment about the parent's origin).
+void addToParent(const Model& model, Data& data, int link);
 
 // q advanced along u for a time dt on the configuration manifold (quaternions by exact rotation about the
 // angular velocity in F): the exponential map that finite-difference checks and integrators need.

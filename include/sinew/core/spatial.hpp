@@ -32,6 +32,21 @@ inline SpatialVector crossForce(const SpatialVector& v, const SpatialVector& f) 
     return r;
 }
 
+// The same force with its moment taken about a point `offset` away from the current one:
+// n' = n - offset x f.
+inline SpatialVector shiftForce(const SpatialVector& F, const Eigen::Vector3d& offset) {
+    SpatialVector r = F;
+    r.head<3>() -= offset.cross(F.tail<3>());
+    return r;
+}
+
+// The same motion with its linear part taken at a point `offset` away: v' = v + w x offset.
+inline SpatialVector shiftMotion(const SpatialVector& V, const Eigen::Vector3d& offset) {
+    SpatialVector r = V;
+    r.tail<3>() += V.head<3>().cross(offset);
+    return r;
+}
+
 // Spatial inertia about the ground origin of mass m with centre of mass c and central inertia Ic, all in
 // ground axes (RBDA eq. 2.63).
 inline Matrix6d calcSpatialInertia(double mass, const Eigen::Vector3d& c, const Eigen::Matrix3d& Ic) {
