@@ -12,26 +12,6 @@ namespace {
 // reference. Moments then stay small wherever the model is, which keeps digits on large models far from
 // the ground origin (docs/closed-chain.md, "Reference points").
 
-// The constraint-force basis T of a joint about its centre (6 x k, k = 6 - nu; T^T S = 0), with joint-frame
-// axes R.
-using ConstraintBasis = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
-using SmallSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
-
-ConstraintBasis calcConstraintBasis(JointType type, const Eigen::Matrix3d& R) {
-    ConstraintBasis T = ConstraintBasis::Zero(6, 6 - getNumU(type));
-    switch (type) {
-        case JointType::Free: break;
-        case JointType::Ball: T.bottomRows<3>().setIdentity(); break;  // forces through the centre
-        case JointType::Pin:  // forces through the centre, and moments about the two axes normal to the pin
-            T.bottomLeftCorner<3, 3>().setIdentity();
-            T.block<3, 1>(0, 3) = R.col(0);
-            T.block<3, 1>(0, 4) = R.col(1);
-            break;
-        case JointType::Weld: T.setIdentity(); break;
-    }
-    return T;
-}
-
 // A spatial force w about the joint centre with S^T w = tau: the joint's generalized forces as a force on
 // the child.
 SpatialVector calcJointForce(const Joint& joint, const Eigen::Matrix3d& R, const double* tau) {
@@ -63,32 +43,22 @@ void extractJointAcceleration(const Joint& joint, const Eigen::Matrix3d& R, cons
     }
 }
 
-// M(d): a motion about one point, taken about the point d away ([[1, 0], [-d x, 1]]); its transpose takes a
-// force about the point d away back to the first point.
-Matrix6d motionShift(const Eigen::Vector3d& d) {
-    Matrix6d M = Matrix6d::Identity();
-    M.bottomLeftCorner<3, 3>() = -skew(d);
-    return M;
+// E = (T^T W T)^-1 for a tree joint. Never singular: of the two subassemblies it joins, at least one
+// moves freely.
+template <int K>
+Eigen::Matrix<double, K, K> calcJointCompliance(const Eigen::Matrix<double, 6, K>& T, const Matrix6d& W) {
+    const Eigen::Matrix<double, K, K> D = T.transpose() * W * T;
+    if constexpr (K <= 4) return D.inverse();  // Eigen's closed form, well conditioned for an SPD D this small
+    else return D.llt().solve(Eigen::Matrix<double, K, K>::Identity());
 }
 
-// Y = T (T^T W T)^-1 T^T for a tree joint. Never singular: of the two subassemblies it joins, at least
-// one moves freely.
-void calcJointCompliance(const ConstraintBasis& T, const Matrix6d& W, Matrix6d& Y) {
-    if (T.cols() == 0) {
-        Y.setZero();
-        return;
-    }
-    const SmallSquare D = T.transpose() * W * T;
-    Y = T * Eigen::LLT<SmallSquare>(D).solve(T.transpose());
-}
-
-// Y = T (T^T W T)^+ T^T for a closure with K constraint directions (a ball loop, 3; the hang weld, 6). D is
+// E = (T^T W T)^+ for a closure with K constraint directions (a ball loop, 3; the hang weld, 6). D is
 // singular when the closure repeats constraints the subassembly already has (a ball loop off the axis of a
 // hinge...); its pseudo-inverse then gives the least-squares (minimum-norm) force and exact accelerations.
-// Returns the number of redundant directions; `conditioning` gets the smallest kept eigenvalue over the
-// largest.
+// Counts the redundant directions; `conditioning` gets the smallest kept eigenvalue over the largest.
 template <int K>
-int calcClosureCompliance(const Eigen::Matrix<double, 6, K>& T, const Matrix6d& W, Matrix6d& Y, double& conditioning) {
+Eigen::Matrix<double, K, K> calcClosureCompliance(const Eigen::Matrix<double, 6, K>& T, const Matrix6d& W,
+                                                  int& redundant, double& conditioning) {
     using Square = Eigen::Matrix<double, K, K>;
     const Square D = T.transpose() * W * T;
     const Eigen::SelfAdjointEigenSolver<Square> eigen(D);
@@ -97,7 +67,7 @@ int calcClosureCompliance(const Eigen::Matrix<double, 6, K>& T, const Matrix6d& 
     // about 1e-15 of the largest eigenvalue; genuine directions of real models sit far above 1e-9.
     const double largest = values.cwiseAbs().maxCoeff();
     Square pseudoInverse = Square::Zero();
-    int redundant = 0;
+    redundant = 0;
     conditioning = 1;
     for (int i = 0; i < K; ++i) {
         if (values[i] > 1e-9 * largest) {
@@ -107,8 +77,23 @@ int calcClosureCompliance(const Eigen::Matrix<double, 6, K>& T, const Matrix6d& 
             ++redundant;
         }
     }
-    Y = T * pseudoInverse * T.transpose();
-    return redundant;
+    return pseudoInverse;
+}
+
+// Constraint-force bases T (T^T S = 0) about a joint's centre: a ball (or ball loop) transmits forces
+// through its centre; a pin also moments about the two axes normal to it (R's x and y).
+Eigen::Matrix<double, 6, 3> ballBasis() {
+    Eigen::Matrix<double, 6, 3> T = Eigen::Matrix<double, 6, 3>::Zero();
+    T.bottomRows<3>().setIdentity();
+    return T;
+}
+
+Eigen::Matrix<double, 6, 5> pinBasis(const Eigen::Matrix3d& R) {
+    Eigen::Matrix<double, 6, 5> T = Eigen::Matrix<double, 6, 5>::Zero();
+    T.bottomLeftCorner<3, 3>().setIdentity();
+    T.block<3, 1>(0, 3) = R.col(0);
+    T.block<3, 1>(0, 4) = R.col(1);
+    return T;
 }
 
 // Everything calcForwardDynamics' stages share.
@@ -184,18 +169,27 @@ struct Evaluation {
         momentum << Ic * w, mass * v.tail<3>();
         fd.bias[bb] = crossForce(v, momentum) - external;
 
+        // With A = Ic^-1 and S_h = skew(r_h - c), M(d_h) I^-1 M(d_k)^T is
+        // [[A, A S_k], [(A S_h)^T, S_h^T A S_k + 1/m]]: one 3x3 product per pair of handles.
         const std::vector<int>& handles = schedule.getHandles(body);
         const std::size_t h = handles.size();
+        const Eigen::Matrix3d A = Iinv.topLeftCorner<3, 3>();
         const SpatialVector a0 = -Iinv * fd.bias[bb];
         for (std::size_t k = 0; k < h; ++k) {
-            const Matrix6d Mk = motionShift(pointOfHandle(handles[k]) - c);
-            const Matrix6d IinvMkT = Iinv * Mk.transpose();
+            const Eigen::Vector3d dk = pointOfHandle(handles[k]) - c;
+            const Eigen::Matrix3d Sk = skew(dk);
+            const Eigen::Matrix3d ASk = A * Sk;
             for (std::size_t i = 0; i <= k; ++i) {
-                const Matrix6d block = motionShift(pointOfHandle(handles[i]) - c) * IinvMkT;
-                fd.Phi[bb][i * h + k] = block;
-                fd.Phi[bb][k * h + i] = block.transpose();
+                const Eigen::Matrix3d Si = skew(pointOfHandle(handles[i]) - c);
+                Matrix6d& block = fd.Phi[bb][i * h + k];
+                block.topLeftCorner<3, 3>() = A;
+                block.topRightCorner<3, 3>() = ASk;
+                block.bottomLeftCorner<3, 3>() = (A * Si).transpose();
+                block.bottomRightCorner<3, 3>() = Si.transpose() * ASk;
+                block.bottomRightCorner<3, 3>().diagonal().array() += 1 / mass;
+                if (i != k) fd.Phi[bb][k * h + i] = block.transpose();
             }
-            fd.b[bb][k] = Mk * a0;
+            fd.b[bb][k] = shiftMotion(a0, dk);
         }
     }
 
@@ -212,39 +206,24 @@ struct Evaluation {
             fd.jointBias[j].tail<3>() += relative.tail<3>().cross(relative.head<3>());
     }
 
-    // Y and g of the operation's joint, and its generalized forces as a spatial force on beta.
-    void calcJointTerms(std::size_t o, const Matrix6d& W, const SpatialVector& bBeta, const SpatialVector& bAlpha) const {
-        const AssemblyOperation& op = schedule.getOperations()[o];
-        const AssemblyJoint& aj = schedule.getJoints()[static_cast<std::size_t>(op.joint)];
-        const SpatialVector& c = fd.jointBias[static_cast<std::size_t>(op.joint)];
-        Matrix6d& Y = fd.Y[o];
-        SpatialVector force = SpatialVector::Zero();
-        fd.operationRedundancy[o] = 0;
-        fd.operationConditioning[o] = 1;
-        switch (aj.kind) {
-            case AssemblyJoint::Kind::Tree: {
-                const Joint& joint = model.getJoint(aj.index);
-                const Eigen::Matrix3d& R = data.R_GF[static_cast<std::size_t>(aj.index)];
-                calcJointCompliance(calcConstraintBasis(joint.type, R), W, Y);
-                force = calcJointForce(joint, R, tau.data() + joint.uStart);
-                break;
-            }
-            case AssemblyJoint::Kind::Loop: {
-                Eigen::Matrix<double, 6, 3> T = Eigen::Matrix<double, 6, 3>::Zero();
-                T.bottomRows<3>().setIdentity();
-                fd.operationRedundancy[o] = calcClosureCompliance<3>(T, W, Y, fd.operationConditioning[o]);
-                break;
-            }
-            case AssemblyJoint::Kind::Hang:
-                fd.operationRedundancy[o] =
-                    calcClosureCompliance<6>(Matrix6d::Identity(), W, Y, fd.operationConditioning[o]);
-                break;
+    // Join (docs/closed-chain.md, "Join"): subassemblies A and B through joint J into C. Y = T E T^T has
+    // rank K (the joint's constraint directions), so each block update Phi_ha Y Phi_ak is done as
+    // (Phi_ha T) E (Phi_ka T)^T: for a ball joint T selects the force rows and the update costs half.
+    void join(std::size_t o) const {
+        const AssemblyJoint& aj = schedule.getJoints()[static_cast<std::size_t>(schedule.getOperations()[o].joint)];
+        const Joint& joint = model.getJoint(aj.index);
+        const Eigen::Matrix3d& R = data.R_GF[static_cast<std::size_t>(aj.index)];
+        const SpatialVector force = calcJointForce(joint, R, tau.data() + joint.uStart);
+        switch (joint.type) {
+            case JointType::Ball: joinThrough<3>(o, ballBasis(), force); break;
+            case JointType::Pin: joinThrough<5>(o, pinBasis(R), force); break;
+            case JointType::Free: joinThrough<0>(o, Eigen::Matrix<double, 6, 0>(), force); break;
+            case JointType::Weld: break;  // welded links share a body: never an assembly joint
         }
-        fd.g[o] = force - Y * (W * force) - Y * (bBeta - bAlpha - c);
     }
 
-    // Join (docs/closed-chain.md, "Join"): subassemblies A and B through joint J into C.
-    void join(std::size_t o) const {
+    template <int K>
+    void joinThrough(std::size_t o, const Eigen::Matrix<double, 6, K>& T, const SpatialVector& force) const {
         const AssemblyOperation& op = schedule.getOperations()[o];
         const std::vector<Matrix6d>& PA = fd.Phi[static_cast<std::size_t>(op.first)];
         const std::vector<Matrix6d>& PB = fd.Phi[static_cast<std::size_t>(op.second)];
@@ -256,36 +235,52 @@ struct Evaluation {
         const int ia = op.alphaPosition, ib = op.betaPosition;
         auto A = [&](int i, int k) -> const Matrix6d& { return PA[static_cast<std::size_t>(i * hA + k)]; };
         auto B = [&](int i, int k) -> const Matrix6d& { return PB[static_cast<std::size_t>(i * hB + k)]; };
-        auto setC = [&](int i, int k, const Matrix6d& block) {
-            C[static_cast<std::size_t>(i * hC + k)] = block;
-            if (i != k) C[static_cast<std::size_t>(k * hC + i)] = block.transpose();
-        };
-        // Positions in the result: A's handles but alpha, then B's but beta.
-        auto inCfromA = [&](int k) { return k < ia ? k : k - 1; };
-        auto inCfromB = [&](int k) { return hA - 1 + (k < ib ? k : k - 1); };
-        calcJointTerms(o, A(ia, ia) + B(ib, ib), bB[static_cast<std::size_t>(ib)], bA[static_cast<std::size_t>(ia)]);
-        const Matrix6d& Y = fd.Y[o];
+        const Matrix6d W = A(ia, ia) + B(ib, ib);
+        Eigen::Matrix<double, K, K> E;
+        if constexpr (K > 0) E = calcJointCompliance<K>(T, W);
+        setJointTerms<K>(o, T, E, W, force, bB[static_cast<std::size_t>(ib)] - bA[static_cast<std::size_t>(ia)]);
         const SpatialVector& g = fd.g[o];
-        for (int h = 0; h < hA; ++h) {
-            if (h == ia) continue;
-            const Matrix6d L = A(h, ia) * Y;
-            for (int k = h; k < hA; ++k)
-                if (k != ia) setC(inCfromA(h), inCfromA(k), A(h, k) - L * A(ia, k));
-            for (int k = 0; k < hB; ++k)
-                if (k != ib) setC(inCfromA(h), inCfromB(k), L * B(ib, k));
-            bC[static_cast<std::size_t>(inCfromA(h))] = bA[static_cast<std::size_t>(h)] - A(h, ia) * g;
+
+        // U_h = Phi_h,joint T (6 x K) and U_h E, for every remaining handle of A and of B.
+        std::vector<Matrix6d>& U = fd.scratchU[o];
+        std::vector<Matrix6d>& UE = fd.scratchUE[o];
+        for (int c = 0; c < hC; ++c) {
+            const bool fromA = c < hA - 1;
+            const int h = fromA ? (c < ia ? c : c + 1) : (c - (hA - 1) < ib ? c - (hA - 1) : c - (hA - 1) + 1);
+            const Matrix6d& P = fromA ? A(h, ia) : B(h, ib);
+            U[static_cast<std::size_t>(c)].leftCols<K>() = P * T;
+            UE[static_cast<std::size_t>(c)].leftCols<K>() = U[static_cast<std::size_t>(c)].leftCols<K>() * E;
+            bC[static_cast<std::size_t>(c)] = fromA ? SpatialVector(bA[static_cast<std::size_t>(h)] - P * g)
+                                                    : SpatialVector(bB[static_cast<std::size_t>(h)] + P * g);
         }
-        for (int h = 0; h < hB; ++h) {
-            if (h == ib) continue;
-            const Matrix6d R = B(h, ib) * Y;
-            for (int k = h; k < hB; ++k)
-                if (k != ib) setC(inCfromB(h), inCfromB(k), B(h, k) - R * B(ib, k));
-            bC[static_cast<std::size_t>(inCfromB(h))] = bB[static_cast<std::size_t>(h)] + B(h, ib) * g;
+        for (int c = 0; c < hC; ++c) {
+            const bool cFromA = c < hA - 1;
+            const int h = cFromA ? (c < ia ? c : c + 1) : (c - (hA - 1) < ib ? c - (hA - 1) : c - (hA - 1) + 1);
+            for (int d = c; d < hC; ++d) {
+                const bool dFromA = d < hA - 1;
+                const int k = dFromA ? (d < ia ? d : d + 1) : (d - (hA - 1) < ib ? d - (hA - 1) : d - (hA - 1) + 1);
+                const Matrix6d update = UE[static_cast<std::size_t>(c)].leftCols<K>() *
+                                        U[static_cast<std::size_t>(d)].leftCols<K>().transpose();
+                Matrix6d block;
+                if (cFromA && dFromA) block = A(h, k) - update;
+                else if (!cFromA && !dFromA) block = B(h, k) - update;
+                else block = update;  // c in A, d in B (c < d keeps that order)
+                C[static_cast<std::size_t>(c * hC + d)] = block;
+                if (c != d) C[static_cast<std::size_t>(d * hC + c)] = block.transpose();
+            }
         }
     }
 
-    // Close (docs/closed-chain.md, "Close"): a loop whose two handles are both in subassembly A.
+    // Close (docs/closed-chain.md, "Close"): a loop (or the hang) whose two handles are both in A. With
+    // Delta_h = Phi_h,beta - Phi_h,alpha, the update Delta_h Y Delta_k^T is done as (Delta_h T) E (Delta_k T)^T.
     void close(std::size_t o) const {
+        const AssemblyJoint& aj = schedule.getJoints()[static_cast<std::size_t>(schedule.getOperations()[o].joint)];
+        if (aj.kind == AssemblyJoint::Kind::Loop) closeThrough<3>(o, ballBasis());
+        else closeThrough<6>(o, Matrix6d::Identity());
+    }
+
+    template <int K>
+    void closeThrough(std::size_t o, const Eigen::Matrix<double, 6, K>& T) const {
         const AssemblyOperation& op = schedule.getOperations()[o];
         const std::vector<Matrix6d>& PA = fd.Phi[static_cast<std::size_t>(op.first)];
         const std::vector<SpatialVector>& bA = fd.b[static_cast<std::size_t>(op.first)];
@@ -294,22 +289,42 @@ struct Evaluation {
         const int hA = static_cast<int>(bA.size()), hC = static_cast<int>(bC.size());
         const int ia = op.alphaPosition, ib = op.betaPosition;
         auto A = [&](int i, int k) -> const Matrix6d& { return PA[static_cast<std::size_t>(i * hA + k)]; };
-        auto inC = [&](int k) { return k - (k > ia ? 1 : 0) - (k > ib ? 1 : 0); };
-        calcJointTerms(o, A(ia, ia) + A(ib, ib) - A(ia, ib) - A(ib, ia), bA[static_cast<std::size_t>(ib)],
-                       bA[static_cast<std::size_t>(ia)]);
-        const Matrix6d& Y = fd.Y[o];
+        // The c-th remaining handle of A.
+        auto handleAt = [&](int c) { return c + (c >= std::min(ia, ib) ? 1 : 0) + (c + 1 >= std::max(ia, ib) ? 1 : 0); };
+        const Matrix6d W = A(ia, ia) + A(ib, ib) - A(ia, ib) - A(ib, ia);
+        const Eigen::Matrix<double, K, K> E =
+            calcClosureCompliance<K>(T, W, fd.operationRedundancy[o], fd.operationConditioning[o]);
+        setJointTerms<K>(o, T, E, W, SpatialVector::Zero(),
+                         bA[static_cast<std::size_t>(ib)] - bA[static_cast<std::size_t>(ia)]);
         const SpatialVector& g = fd.g[o];
-        for (int h = 0; h < hA; ++h) {
-            if (h == ia || h == ib) continue;
-            const Matrix6d dY = (A(h, ib) - A(h, ia)) * Y;
-            for (int k = h; k < hA; ++k) {
-                if (k == ia || k == ib) continue;
-                const Matrix6d block = A(h, k) - dY * (A(ib, k) - A(ia, k));
-                C[static_cast<std::size_t>(inC(h) * hC + inC(k))] = block;
-                if (h != k) C[static_cast<std::size_t>(inC(k) * hC + inC(h))] = block.transpose();
-            }
-            bC[static_cast<std::size_t>(inC(h))] = bA[static_cast<std::size_t>(h)] + (A(h, ib) - A(h, ia)) * g;
+        std::vector<Matrix6d>& U = fd.scratchU[o];
+        std::vector<Matrix6d>& UE = fd.scratchUE[o];
+        for (int c = 0; c < hC; ++c) {
+            const int h = handleAt(c);
+            const Matrix6d delta = A(h, ib) - A(h, ia);
+            U[static_cast<std::size_t>(c)].leftCols<K>() = delta * T;
+            UE[static_cast<std::size_t>(c)].leftCols<K>() = U[static_cast<std::size_t>(c)].leftCols<K>() * E;
+            bC[static_cast<std::size_t>(c)] = bA[static_cast<std::size_t>(h)] + delta * g;
         }
+        for (int c = 0; c < hC; ++c) {
+            for (int d = c; d < hC; ++d) {
+                const Matrix6d block = A(handleAt(c), handleAt(d)) - UE[static_cast<std::size_t>(c)].leftCols<K>() *
+                                                                         U[static_cast<std::size_t>(d)].leftCols<K>().transpose();
+                C[static_cast<std::size_t>(c * hC + d)] = block;
+                if (c != d) C[static_cast<std::size_t>(d * hC + c)] = block.transpose();
+            }
+        }
+    }
+
+    // Y = T E T^T and g = (1 - Y W) w - Y (b_beta - b_alpha - c) of operation o.
+    template <int K>
+    void setJointTerms(std::size_t o, const Eigen::Matrix<double, 6, K>& T, const Eigen::Matrix<double, K, K>& E,
+                       const Matrix6d& W, const SpatialVector& force, const SpatialVector& bDifference) const {
+        const SpatialVector& c = fd.jointBias[static_cast<std::size_t>(schedule.getOperations()[o].joint)];
+        Matrix6d& Y = fd.Y[o];
+        if constexpr (K == 0) Y.setZero();
+        else Y = T * E * T.transpose();
+        fd.g[o] = force - Y * (W * force + bDifference - c);
     }
 
     // The force through the operation's joint, from the forces on its result's handles.
@@ -392,6 +407,13 @@ ForwardDynamicsData::ForwardDynamicsData(const Model& model, const AssemblySched
     }
     Y.assign(operations, Matrix6d::Zero());
     g.assign(operations, SpatialVector::Zero());
+    scratchU.resize(operations);
+    scratchUE.resize(operations);
+    for (std::size_t o = 0; o < operations; ++o) {
+        const std::size_t h = schedule.getHandles(schedule.getOperations()[o].result).size();
+        scratchU[o].assign(h, Matrix6d::Zero());
+        scratchUE[o].assign(h, Matrix6d::Zero());
+    }
     operationRedundancy.assign(operations, 0);
     operationConditioning.assign(operations, 1.0);
     handleForce.assign(2 * schedule.getJoints().size(), SpatialVector::Zero());
@@ -400,41 +422,51 @@ ForwardDynamicsData::ForwardDynamicsData(const Model& model, const AssemblySched
     loopForce.assign(static_cast<std::size_t>(model.getNumLoops()), Eigen::Vector3d::Zero());
 }
 
-void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, const Data& data,
-                         const Eigen::VectorXd& tau, const std::vector<SpatialVector>& linkForces,
-                         ForwardDynamicsData& fd, int threads) {
-    const Evaluation e{model, schedule, data, tau, linkForces, fd};
+namespace {
+
+// The stages in order; forEach(begin, end, f) runs f over a range, alone or shared between threads.
+template <typename ForEach>
+void runStages(const Evaluation& e, ForEach&& forEach) {
+    const AssemblySchedule& schedule = e.schedule;
     const int numBodies = schedule.getNumBodies();
     const int numJoints = static_cast<int>(schedule.getJoints().size());
     const std::vector<int>& levels = schedule.getLevelStarts();
     const int numLevels = schedule.getNumLevels();
-    // One parallel region; each "omp for" ends in a barrier, so a level starts when the one before is done.
-    // With one thread (or without OpenMP) this is the plain serial algorithm.
-#pragma omp parallel num_threads(threads) if (threads > 1)
-    {
-#pragma omp for schedule(static)
-        for (int j = 0; j < numJoints; ++j) e.placeJoint(static_cast<std::size_t>(j));
-#pragma omp for schedule(static)
-        for (int body = 0; body < numBodies; ++body) e.prepareBody(body);
-#pragma omp for schedule(static)
-        for (int j = 0; j < numJoints; ++j) e.prepareJoint(static_cast<std::size_t>(j));
-        for (int level = 0; level < numLevels; ++level) {
+    forEach(0, numJoints, [&](int j) { e.placeJoint(static_cast<std::size_t>(j)); });
+    forEach(0, numBodies, [&](int body) { e.prepareBody(body); });
+    forEach(0, numJoints, [&](int j) { e.prepareJoint(static_cast<std::size_t>(j)); });
+    for (int level = 0; level < numLevels; ++level)
+        forEach(levels[static_cast<std::size_t>(level)], levels[static_cast<std::size_t>(level) + 1], [&](int o) {
+            const std::size_t op = static_cast<std::size_t>(o);
+            if (schedule.getOperations()[op].isClose) e.close(op);
+            else e.join(op);
+        });
+    for (int level = numLevels - 1; level >= 0; --level)
+        forEach(levels[static_cast<std::size_t>(level)], levels[static_cast<std::size_t>(level) + 1],
+                [&](int o) { e.disassemble(static_cast<std::size_t>(o)); });
+    forEach(0, numBodies, [&](int body) { e.finishBody(body); });
+    forEach(0, numJoints, [&](int j) { e.finishJoint(static_cast<std::size_t>(j)); });
+}
+
+}  // namespace
+
+void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, const Data& data,
+                         const Eigen::VectorXd& tau, const std::vector<SpatialVector>& linkForces,
+                         ForwardDynamicsData& fd, int threads) {
+    const Evaluation e{model, schedule, data, tau, linkForces, fd};
+    if (threads <= 1) {
+        // Plain loops: even a one-thread OpenMP team pays for every worksharing barrier.
+        runStages(e, [](int begin, int end, const auto& f) {
+            for (int i = begin; i < end; ++i) f(i);
+        });
+    } else {
+        // One parallel region; each worksharing loop ends in a barrier, so a level starts when the one
+        // before it is done.
+#pragma omp parallel num_threads(threads)
+        runStages(e, [](int begin, int end, const auto& f) {
 #pragma omp for schedule(dynamic, 1)
-            for (int o = levels[static_cast<std::size_t>(level)]; o < levels[static_cast<std::size_t>(level) + 1]; ++o) {
-                const std::size_t op = static_cast<std::size_t>(o);
-                if (schedule.getOperations()[op].isClose) e.close(op);
-                else e.join(op);
-            }
-        }
-        for (int level = numLevels - 1; level >= 0; --level) {
-#pragma omp for schedule(dynamic, 1)
-            for (int o = levels[static_cast<std::size_t>(level)]; o < levels[static_cast<std::size_t>(level) + 1]; ++o)
-                e.disassemble(static_cast<std::size_t>(o));
-        }
-#pragma omp for schedule(static)
-        for (int body = 0; body < numBodies; ++body) e.finishBody(body);
-#pragma omp for schedule(static)
-        for (int j = 0; j < numJoints; ++j) e.finishJoint(static_cast<std::size_t>(j));
+            for (int i = begin; i < end; ++i) f(i);
+        });
     }
     fd.redundantConstraints = 0;
     fd.loopConditioning = 1;

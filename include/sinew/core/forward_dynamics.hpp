@@ -34,6 +34,9 @@ struct ForwardDynamicsData {
     std::vector<Matrix6d> Y;
     std::vector<SpatialVector> g;
     std::vector<int> operationRedundancy;
+    // Per operation, per handle of its result: Phi_h,joint T and that times E (first K columns used).
+    std::vector<std::vector<Matrix6d>> scratchU;
+    std::vector<std::vector<Matrix6d>> scratchUE;
     std::vector<double> operationConditioning;
     // Per handle (2 x assembly joints): the spatial force on the handle's body through its joint, about the
     // joint's point.
