@@ -1,113 +1,165 @@
-// sinew's benchmarks: what the wires cost on the sinew side (the full wire Jacobian, or the generalized forces
-// of all tensions without forming it) next to its peer, one Simbody forward-dynamics evaluation with the same
-// wires, on the same model and configuration in the same run, so the ratio does not depend on the machine.
+// sinew's benchmarks: one forward-dynamics evaluation by sinew (ForwardDynamics/sinew/<model>, the default
+// schedule; ForwardDynamics/sinew_balanced/<model>, the balanced one) and by Simbody
+// (ForwardDynamics/simbody/<model>, the wires as the plugin's elements; ForwardDynamics/simbody_fused/<model>,
+// the wires as one lean element) at the same state of the same model in the same run, so the ratios do not
+// depend on the machine; and what the wires cost on the sinew side, the full wire Jacobian
+// (WireJacobian/<model>) or the generalized forces of all tensions without forming it (WireForces/<model>).
 //
-// Every benchmark is registered once per row of the model table (getModelTable); the model sizes go into each
-// result's counters and into the run's context, so a JSON file says what was measured.
+// Every benchmark is registered once per row of the model table (benchmark_models.hpp); the model sizes go
+// into each result's counters and into the run's context, so a JSON file says what was measured.
+// scripts/bench.sh runs this program and scripts/plot_scaling.py pairs and plots the results.
 #include "sinew/simbody/ndebug_guard.hpp"
 
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>
-#include <cmath>
-#include <functional>
 #include <memory>
-#include <random>
 #include <string>
 #include <vector>
 
-#include "sinew/core/census.hpp"
+#include "allocation_counter.hpp"
+#include "benchmark_models.hpp"
+#include "sinew/core/assembly_schedule.hpp"
 #include "sinew/core/data.hpp"
+#include "sinew/core/forward_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/model.hpp"
-#include "sinew/core/random_model.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
-#include "sinew/io/model_file.hpp"
-#include "sinew/simbody/simbody_model.hpp"
 
+namespace sinew_benchmarks {
 namespace {
 
-struct ModelSpec {
-    std::string name;
-    std::function<sinew::Model()> build;
-};
+// sinew and Simbody must compute the same accelerations before their times mean anything.
+constexpr double kUdotTolerance = 1e-6;
 
-// Random trees of the paper's scale: ten wires per link and a few loop closures. No virtual links, because
-// Simbody cannot compute accelerations for massless free bodies and the peer must run on the same model.
-sinew::Model makeRandomModel(int numLinks, int numLoops) {
-    sinew::RandomModelOptions options;
-    options.numLinks = numLinks;
-    options.rootJoint = sinew::JointType::Free;
-    options.numLoops = numLoops;
-    options.numWires = 10 * numLinks;
-    options.numVirtualLinks = 0;
-    options.seed = 1;
-    return sinew::generateRandomModel(options);
+// Prepares the fixture's state and checks the two engines agree there; false (and the benchmark skipped
+// with the reason) when they do not.
+bool prepareAgreedState(benchmark::State& state, ModelFixture* fixture) {
+    fixture->prepare();
+    state.counters["udot_rel_diff"] = fixture->getUdotDifference();
+    // 1 where the loops locked the perturbed pose and the state is at the default pose instead.
+    state.counters["default_pose"] = fixture->projectionFellBack() ? 1 : 0;
+    if (!(fixture->getUdotDifference() <= kUdotTolerance)) {
+        state.SkipWithError(("sinew's and Simbody's udot differ by " + std::to_string(fixture->getUdotDifference()) +
+                             " (relative) at the benchmark state")
+                                .c_str());
+        return false;
+    }
+    return true;
 }
 
-const std::vector<ModelSpec>& getModelTable() {
-    static const std::vector<ModelSpec> table = {
-        {"arm26", [] { return sinew::readModelFile(SINEW_SOURCE_DIR "/models/arm26.yaml"); }},
-        {"random50", [] { return makeRandomModel(50, 4); }},
-        {"random200", [] { return makeRandomModel(200, 10); }},
+// The heap allocations of one evaluation after a first one (which may size caches), as the counter
+// `allocations`; untimed.
+template <class Evaluate>
+void countAllocations(benchmark::State& state, Evaluate&& evaluate) {
+    evaluate();
+    const long long before = getAllocationCount();
+    evaluate();
+    state.counters["allocations"] = static_cast<double>(getAllocationCount() - before);
+}
+
+// Everything an integrator step needs from sinew for udot: link poses and velocities, wire paths, speeds
+// and tensions, the wires' forces on the links, and the assembly-disassembly forward dynamics. The buffers
+// (Data, the schedule and its ForwardDynamicsData) are built once, outside the timing loop. One thread, as
+// Simbody runs.
+void timeSinewForwardDynamics(benchmark::State& state, ModelFixture* fixture, sinew::AssemblySchedule::Kind kind) {
+    fixture->setCounters(state);
+    if (!prepareAgreedState(state, fixture)) return;
+    const sinew::Model& model = fixture->getModel();
+    const Eigen::VectorXd& q = fixture->getQ();
+    const Eigen::VectorXd& u = fixture->getU();
+    const Eigen::VectorXd& tau = fixture->getTau();
+    sinew::Data data(model);
+    const sinew::AssemblySchedule schedule(model, kind);
+    sinew::ForwardDynamicsData fd(model, schedule);
+    Eigen::VectorXd tensions(model.getNumWires());
+    auto evaluate = [&] {
+        sinew::calcPositionKinematics(model, data, q);
+        sinew::calcVelocityKinematics(model, data, u);
+        sinew::calcWirePaths(model, data);
+        sinew::calcWireSpeeds(model, data);
+        sinew::calcWireTensions(model, data, 0.0, tensions);
+        sinew::calcWireLinkForces(model, data, tensions);
+        sinew::calcForwardDynamics(model, schedule, data, tau, data.F_G, fd, /*threads=*/1);
     };
-    return table;
+    countAllocations(state, evaluate);
+    // This schedule's own answer, checked as prepareAgreedState checked the default one's.
+    const double udotDifference = fixture->calcUdotDifferenceFromSimbody(fd.udot);
+    state.counters["udot_rel_diff"] = udotDifference;
+    if (!(udotDifference <= kUdotTolerance)) {
+        state.SkipWithError("this schedule's udot differs from Simbody's at the benchmark state");
+        return;
+    }
+    for (auto _ : state) {
+        evaluate();
+        benchmark::DoNotOptimize(fd.udot.data());
+        benchmark::ClobberMemory();
+    }
+    // The handles of the largest subassembly: an operation costs their square, so loops that stay open
+    // across much of the tree show here.
+    state.counters["max_handles"] = schedule.getMaxHandles();
 }
 
-// One model's fixture, shared by all of that model's benchmarks: the model, its census, one random state
-// (q, u) and random tensions. The Simbody system is built on first use, so a --benchmark_filter that leaves
-// out the Simbody benchmarks does not pay for building it.
-class ModelFixture {
-public:
-    explicit ModelFixture(sinew::Model model) : model_(std::move(model)), census_(sinew::calcCensus(model_)) {
-        std::mt19937 rng(2024);
-        q_ = sinew::generateRandomCoordinates(model_, rng);
-        u_ = sinew::generateRandomSpeeds(model_, rng);
-        std::uniform_real_distribution<double> tension(0.0, 100.0);  // N
-        tensions_.resize(model_.getNumWires());
-        for (Eigen::Index w = 0; w < tensions_.size(); ++w) tensions_[w] = tension(rng);
+// The default schedule, Automatic: Serial (tips to root) unless Balanced does clearly less work.
+void benchmarkSinewForwardDynamics(benchmark::State& state, ModelFixture* fixture) {
+    timeSinewForwardDynamics(state, fixture, sinew::AssemblySchedule::Kind::Automatic);
+}
+
+// The Balanced schedule (pairs of neighbouring subassemblies, level by level), still on one thread: it
+// closes loops sooner where the Serial schedule carries many open loops up a long chain.
+void benchmarkSinewBalancedForwardDynamics(benchmark::State& state, ModelFixture* fixture) {
+    timeSinewForwardDynamics(state, fixture, sinew::AssemblySchedule::Kind::Balanced);
+}
+
+// Simbody's peer: writing q invalidates the Position stage and all above it, as an integrator step does,
+// so realize recomputes kinematics, the wires, gravity, the articulated-body pass and the loop
+// multipliers; tau sits in a Force::DiscreteForces, which q does not invalidate.
+void timeSimbodyForwardDynamics(benchmark::State& state, const SimTK::MultibodySystem& system,
+                                const SimTK::State& prepared) {
+    SimTK::State s = prepared;
+    const SimTK::Vector q = s.getQ();
+    auto evaluate = [&] {
+        s.updQ() = q;
+        system.realize(s, SimTK::Stage::Acceleration);
+    };
+    countAllocations(state, evaluate);
+    for (auto _ : state) {
+        evaluate();
+        benchmark::DoNotOptimize(&s.getUDot()[0]);
+        benchmark::ClobberMemory();
     }
+}
 
-    const sinew::Model& getModel() const { return model_; }
-    const Eigen::VectorXd& getQ() const { return q_; }
-    const Eigen::VectorXd& getU() const { return u_; }
-    const Eigen::VectorXd& getTensions() const { return tensions_; }
+// The wires as the plugin's WireForce elements, one per wire.
+void benchmarkSimbodyForwardDynamics(benchmark::State& state, ModelFixture* fixture) {
+    fixture->setCounters(state);
+    if (!prepareAgreedState(state, fixture)) return;
+    timeSimbodyForwardDynamics(state, fixture->getSimbodyModel().getSystem(), fixture->getSimbodyState());
+}
 
-    const sinew::SimbodyModel& getSimbodyModel() {
-        if (!simbody_) simbody_ = std::make_unique<sinew::SimbodyModel>(model_);
-        return *simbody_;
+// The wires as one FusedWireForce.
+void benchmarkFusedSimbodyForwardDynamics(benchmark::State& state, ModelFixture* fixture) {
+    fixture->setCounters(state);
+    if (!prepareAgreedState(state, fixture)) return;
+    fixture->prepareFused();
+    state.counters["udot_rel_diff"] = fixture->getFusedUdotDifference();
+    if (!(fixture->getFusedUdotDifference() <= kUdotTolerance)) {
+        state.SkipWithError("sinew's and the fused Simbody system's udot differ at the benchmark state");
+        return;
     }
+    timeSimbodyForwardDynamics(state, fixture->getFusedSimbodyModel().getSystem(), fixture->getFusedSimbodyState());
+}
 
-    void setCounters(benchmark::State& state) const {
-        state.counters["links"] = census_.links;
-        state.counters["dof"] = census_.dof;
-        state.counters["wires"] = census_.wires;
-        state.counters["wire_points"] = census_.wirePoints;
-        state.counters["loops"] = census_.loops;
-    }
-
-    std::string describe() const {
-        return "links=" + std::to_string(census_.links) + " dof=" + std::to_string(census_.dof) +
-               " nq=" + std::to_string(model_.getNumQ()) + " wires=" + std::to_string(census_.wires) +
-               " wire_points=" + std::to_string(census_.wirePoints) + " loops=" + std::to_string(census_.loops) +
-               " virtual_links=" + std::to_string(census_.virtualLinks);
-    }
-
-private:
-    sinew::Model model_;
-    sinew::Census census_;
-    Eigen::VectorXd q_, u_, tensions_;
-    std::unique_ptr<sinew::SimbodyModel> simbody_;
-};
-
-// The part both sinew benchmarks start from: link poses and wire paths at q.
+// The part both wire benchmarks start from: link poses and wire paths at q.
 void calcWireGeometry(const sinew::Model& model, sinew::Data& data, const Eigen::VectorXd& q) {
     sinew::calcPositionKinematics(model, data, q);
     sinew::calcWirePaths(model, data);
 }
 
 void benchmarkWireJacobian(benchmark::State& state, ModelFixture* fixture) {
+    fixture->setCounters(state);
+    fixture->prepare();
     const sinew::Model& model = fixture->getModel();
     sinew::Data data(model);
     Eigen::MatrixXd J(model.getNumWires(), model.getNumU());
@@ -117,60 +169,60 @@ void benchmarkWireJacobian(benchmark::State& state, ModelFixture* fixture) {
         benchmark::DoNotOptimize(J.data());
         benchmark::ClobberMemory();
     }
-    fixture->setCounters(state);
 }
 
 void benchmarkWireForces(benchmark::State& state, ModelFixture* fixture) {
+    fixture->setCounters(state);
+    fixture->prepare();
     const sinew::Model& model = fixture->getModel();
     sinew::Data data(model);
+    // Fixed tensions (0 to 100 N): the pass's cost does not depend on them.
+    Eigen::VectorXd tensions = 50.0 * (Eigen::VectorXd::Random(model.getNumWires()).array() + 1.0);
     Eigen::VectorXd tau(model.getNumU());
     for (auto _ : state) {
         calcWireGeometry(model, data, fixture->getQ());
-        sinew::calcWireGeneralizedForces(model, data, fixture->getTensions(), tau);
+        sinew::calcWireGeneralizedForces(model, data, tensions, tau);
         benchmark::DoNotOptimize(tau.data());
         benchmark::ClobberMemory();
     }
-    fixture->setCounters(state);
 }
 
-void benchmarkSimbodyForwardDynamics(benchmark::State& state, ModelFixture* fixture) {
-    const sinew::SimbodyModel& simbody = fixture->getSimbodyModel();
-    const SimTK::MultibodySystem& system = simbody.getSystem();
-    SimTK::State s = simbody.makeState(fixture->getQ(), fixture->getU(), SimTK::Stage::Acceleration);
-    // The loops are not assembled at a random q; Simbody still computes accelerations (the constraint errors
-    // only enter the multipliers' right-hand side), but check they are numbers before timing them.
-    for (int i = 0; i < s.getNU(); ++i) {
-        if (!std::isfinite(s.getUDot()[i])) {
-            state.SkipWithError("Simbody's accelerations are not finite at the benchmark state");
-            return;
-        }
-    }
-    const SimTK::Vector q = s.getQ();
-    for (auto _ : state) {
-        // Writing q invalidates the Position stage and all above it, as an integrator step does, so realize
-        // recomputes kinematics, wire forces, the articulated-body pass and the loop multipliers.
-        s.updQ() = q;
-        system.realize(s, SimTK::Stage::Acceleration);
-        benchmark::DoNotOptimize(&s.getUDot()[0]);
-        benchmark::ClobberMemory();
-    }
-    fixture->setCounters(state);
-}
+// Which models a kind of benchmark runs on.
+enum class Scope {
+    All,
+    ModelsWithWires,   // a peer that differs from another only in how it computes the wires
+    WireBenchmarkModels  // ModelSpec::wireBenchmarks
+};
 
 struct BenchmarkKind {
     const char* prefix;  // the result is named prefix + model name
     void (*run)(benchmark::State&, ModelFixture*);
+    Scope scope;
 };
 
 constexpr BenchmarkKind kBenchmarkKinds[] = {
-    {"WireJacobian/", benchmarkWireJacobian},
-    {"WireForces/", benchmarkWireForces},
-    {"ForwardDynamics/simbody/", benchmarkSimbodyForwardDynamics},
+    {"ForwardDynamics/sinew/", benchmarkSinewForwardDynamics, Scope::All},
+    {"ForwardDynamics/sinew_balanced/", benchmarkSinewBalancedForwardDynamics, Scope::All},
+    {"ForwardDynamics/simbody/", benchmarkSimbodyForwardDynamics, Scope::All},
+    {"ForwardDynamics/simbody_fused/", benchmarkFusedSimbodyForwardDynamics, Scope::ModelsWithWires},
+    {"WireJacobian/", benchmarkWireJacobian, Scope::WireBenchmarkModels},
+    {"WireForces/", benchmarkWireForces, Scope::WireBenchmarkModels},
 };
 
+bool runsOn(const BenchmarkKind& kind, const ModelSpec& spec, const ModelFixture& fixture) {
+    switch (kind.scope) {
+        case Scope::All: return true;
+        case Scope::ModelsWithWires: return fixture.getModel().getNumWires() > 0;
+        case Scope::WireBenchmarkModels: return spec.wireBenchmarks;
+    }
+    return true;
+}
+
 }  // namespace
+}  // namespace sinew_benchmarks
 
 int main(int argc, char** argv) {
+    using namespace sinew_benchmarks;
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
 
@@ -179,10 +231,13 @@ int main(int argc, char** argv) {
     for (const ModelSpec& spec : getModelTable()) {
         fixtures.push_back(std::make_unique<ModelFixture>(spec.build()));
         ModelFixture* fixture = fixtures.back().get();
-        benchmark::AddCustomContext("model " + spec.name, fixture->describe());
-        for (const BenchmarkKind& kind : kBenchmarkKinds)
+        benchmark::AddCustomContext("model " + spec.name,
+                                    "family=" + spec.family + " variant=" + spec.variant + " " + fixture->describe());
+        for (const BenchmarkKind& kind : kBenchmarkKinds) {
+            if (!runsOn(kind, spec, *fixture)) continue;
             benchmark::RegisterBenchmark((kind.prefix + spec.name).c_str(), kind.run, fixture)
                 ->Unit(benchmark::kMicrosecond);
+        }
     }
 
     benchmark::RunSpecifiedBenchmarks();

@@ -46,12 +46,15 @@ public:
         // Level by level: each level joins disjoint pairs of subassemblies (fewest handles first), then closes
         // the loops that became closable. The operations of a level are independent, so threads can share
         // them; a chain or a balanced tree needs O(log N) levels.
-        Balanced
+        Balanced,
+        // Whichever of the two does less work (sum over operations of the squared handle counts): serial
+        // for trees and local loops, balanced where loops stay open across long chains.
+        Automatic
     };
 
     // `hangLink`: a link to weld to ground where it is, or -1. Throws sinew::Error for a model the algorithm
     // does not handle yet (virtual links) or cannot (a loop between two links welded together).
-    explicit AssemblySchedule(const Model& model, Kind kind = Kind::Serial, int hangLink = -1);
+    explicit AssemblySchedule(const Model& model, Kind kind = Kind::Automatic, int hangLink = -1);
 
     Kind getKind() const { return kind_; }
     int getNumBodies() const { return static_cast<int>(bodyLinks_.size()); }
@@ -69,6 +72,8 @@ public:
     const std::vector<int>& getHandles(int subassembly) const { return handles_[static_cast<std::size_t>(subassembly)]; }
     // The largest number of handles any subassembly has (an operation costs its square).
     int getMaxHandles() const;
+    // Work estimate: the sum over operations of the squared handle count of their result and inputs.
+    double getCost() const;
 
 private:
     int findCurrent(int subassembly) const;
