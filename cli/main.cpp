@@ -13,9 +13,10 @@ const char* kUsage =
     "\n"
     "commands:\n"
     "  info MODEL                      the model's census (paper's Table 1)\n"
-    "  simulate MODEL [--hang-by LINK] [--duration T] [--interval DT] [--accuracy A] [-o DIR]\n"
-    "                                  passive forward simulation; writes .sto files of coordinates,\n"
-    "                                  speeds, wire tensions and energy\n"
+    "  simulate MODEL [--engine sinew|simbody] [--integrator adaptive|rk4] [--step H]\n"
+    "                 [--hang-by LINK] [--duration T] [--interval DT] [--accuracy A] [-o DIR]\n"
+    "                                  passive forward simulation with sinew's or Simbody's engine;\n"
+    "                                  writes .sto files of coordinates, speeds, wire tensions and energy\n"
     "\n"
     "Run 'sinew COMMAND --help' for a command's options.\n";
 

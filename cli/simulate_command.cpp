@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "sinew/core/error.hpp"
+#include "sinew/core/forward_simulation.hpp"
 #include "sinew/io/model_file.hpp"
 #include "sinew/io/storage_file.hpp"
 #include "sinew/simbody/forward_simulation.hpp"
@@ -14,12 +15,19 @@ namespace {
 
 const char* kUsage =
     "usage: sinew simulate MODEL [options]\n"
-    "  Passive forward simulation under gravity and the wires' force laws (Simbody, Runge-Kutta-Merson).\n"
-    "  --hang-by LINK   weld LINK to ground at its initial pose (the paper's body hung by the head)\n"
-    "  --duration T     simulated time, s (default 1)\n"
-    "  --interval DT    time between output frames, s (default 0.01)\n"
-    "  --accuracy A     integrator accuracy and constraint tolerance (default 1e-6)\n"
-    "  -o DIR           output folder (default sinew_output)\n";
+    "  Passive forward simulation under gravity and the wires' force laws, with either engine.\n"
+    "  --engine E        simbody (default): Simbody's dynamics, constraints projected each step;\n"
+    "                    sinew: sinew's assembly-disassembly dynamics, constraints at acceleration level\n"
+    "  --integrator I    adaptive (default): error-controlled (simbody: Runge-Kutta-Merson,\n"
+    "                    sinew: Dormand-Prince 5(4)); rk4: fourth-order Runge-Kutta at a fixed step\n"
+    "  --step H          the rk4 step, s (default 0.001); each interval is split into equal steps <= H\n"
+    "  --hang-by LINK    weld LINK to ground at its initial pose (the paper's body hung by the head)\n"
+    "  --duration T      simulated time, s (default 1)\n"
+    "  --interval DT     time between output frames, s (default 0.01)\n"
+    "  --accuracy A      adaptive integrator accuracy and constraint tolerance (default 1e-6)\n"
+    "  -o DIR            output folder (default sinew_output)\n";
+
+enum class Engine { Simbody, Sinew };
 
 double parseNumber(const std::string& option, const std::string& text) {
     try {
@@ -36,6 +44,7 @@ double parseNumber(const std::string& option, const std::string& text) {
 int runSimulate(const std::vector<std::string>& args) {
     std::string modelPath, outputDir = "sinew_output";
     ForwardSimulationOptions options;
+    Engine engine = Engine::Simbody;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& arg = args[i];
         if (arg == "--help" || arg == "-h") {
@@ -46,7 +55,18 @@ int runSimulate(const std::vector<std::string>& args) {
             if (i + 1 >= args.size()) throw Error(arg + " needs a value");
             return args[++i];
         };
-        if (arg == "--hang-by") options.hangBy = value();
+        if (arg == "--engine") {
+            const std::string& name = value();
+            if (name == "simbody") engine = Engine::Simbody;
+            else if (name == "sinew") engine = Engine::Sinew;
+            else throw Error("unknown engine '" + name + "' (expected sinew or simbody)");
+        } else if (arg == "--integrator") {
+            const std::string& name = value();
+            if (name == "adaptive") options.integrator = ForwardSimulationOptions::Integrator::Adaptive;
+            else if (name == "rk4") options.integrator = ForwardSimulationOptions::Integrator::RungeKutta4Fixed;
+            else throw Error("unknown integrator '" + name + "' (expected adaptive or rk4)");
+        } else if (arg == "--step") options.fixedStep = parseNumber(arg, value());
+        else if (arg == "--hang-by") options.hangBy = value();
         else if (arg == "--duration") options.duration = parseNumber(arg, value());
         else if (arg == "--interval") options.reportInterval = parseNumber(arg, value());
         else if (arg == "--accuracy") options.accuracy = parseNumber(arg, value());
@@ -71,8 +91,18 @@ int runSimulate(const std::vector<std::string>& args) {
     std::printf("simulating %s (%d links, %d DOF, %d wires, %d loops) for %g s%s\n", model.getName().c_str(),
                 model.getNumLinks(), model.getNumU(), model.getNumWires(), model.getNumLoops(), options.duration,
                 options.hangBy.empty() ? "" : (", hung by " + options.hangBy).c_str());
+    const bool adaptive = options.integrator == ForwardSimulationOptions::Integrator::Adaptive;
+    char integratorText[96];
+    if (adaptive)
+        std::snprintf(integratorText, sizeof integratorText, "%s, accuracy %g",
+                      engine == Engine::Sinew ? "Dormand-Prince 5(4)" : "Runge-Kutta-Merson", options.accuracy);
+    else
+        std::snprintf(integratorText, sizeof integratorText, "%s at a fixed step <= %g s",
+                      engine == Engine::Sinew ? "classic Runge-Kutta 4" : "Runge-Kutta-Merson", options.fixedStep);
+    std::printf("engine: %s (%s)\n", engine == Engine::Sinew ? "sinew" : "simbody", integratorText);
     Progress progress("simulate", options.duration);
-    const SimulationSummary summary = simulateForward(model, options, [&](const SimulationFrame& frame) {
+    const auto simulate = engine == Engine::Sinew ? simulateForwardSinew : simulateForward;
+    const SimulationSummary summary = simulate(model, options, [&](const SimulationFrame& frame) {
         auto append = [&](StorageTable& table, const Eigen::VectorXd& row) {
             table.times.push_back(frame.time);
             table.rows.emplace_back(row.data(), row.data() + row.size());
@@ -97,6 +127,8 @@ int runSimulate(const std::vector<std::string>& args) {
 
     std::printf("%d frames, %d integrator steps, %.3f s wall: %.3g s per output frame\n", summary.frames, summary.steps,
                 summary.wallSeconds, summary.wallSeconds / summary.frames);
+    if (summary.wireSwitches > 0) std::printf("%d wire switches (slack/taut) located\n", summary.wireSwitches);
+    std::printf("max position-constraint violation %.3g m\n", summary.maxConstraintViolation);
     std::printf("energy drift: max |E - E0| = %.3g J (%.3g of peak kinetic energy %.3g J; wire damping dissipates)\n",
                 summary.maxEnergyDrift,
                 summary.peakKineticEnergy > 0 ? summary.maxEnergyDrift / summary.peakKineticEnergy : 0.0,

@@ -1,9 +1,12 @@
 #include "sinew/simbody/forward_simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "sinew/core/error.hpp"
+#include "sinew/core/forward_simulation.hpp"
+#include "sinew/core/kinematics.hpp"
 #include "sinew/simbody/simbody_model.hpp"
 
 namespace sinew {
@@ -34,8 +37,21 @@ SimulationSummary simulateForward(const Model& model, const ForwardSimulationOpt
     SimTK::RungeKuttaMersonIntegrator integrator(system);
     integrator.setAccuracy(options.accuracy);
     integrator.setConstraintTolerance(options.accuracy);
+    if (options.integrator == ForwardSimulationOptions::Integrator::RungeKutta4Fixed) {
+        if (!(options.fixedStep > 0)) throw Error("the fixed-step integrator needs a step > 0");
+        // Equal steps no longer than fixedStep that land on the report times, as sinew's engine takes them.
+        integrator.setFixedStepSize(options.reportInterval /
+                                    std::max(1.0, std::ceil(options.reportInterval / options.fixedStep - 1e-9)));
+    }
     SimTK::TimeStepper stepper(system, integrator);
     stepper.initialize(state);
+
+    // The hung link's origin at the default pose, where the weld holds it, for the constraint violation.
+    const int hangLink = options.hangBy.empty() ? -1 : model.findLinkIndex(options.hangBy);
+    Data kinematics(model);
+    calcPositionKinematics(model, kinematics, model.getDefaultQ());
+    const Eigen::Vector3d p_GH =
+        hangLink >= 0 ? kinematics.p_GB[static_cast<std::size_t>(hangLink)] : Eigen::Vector3d::Zero();
 
     SimulationSummary summary;
     SimulationFrame frame;
@@ -46,6 +62,8 @@ SimulationSummary simulateForward(const Model& model, const ForwardSimulationOpt
         frame.q = toEigen(s.getQ());
         frame.u = toEigen(s.getU());
         for (int w = 0; w < model.getNumWires(); ++w) frame.tensions[w] = simbody.getWireForce(w).calcTension(s);
+        summary.maxConstraintViolation = std::max(summary.maxConstraintViolation,
+                                                  calcConstraintViolation(model, kinematics, frame.q, hangLink, p_GH));
         frame.kineticEnergy = system.calcKineticEnergy(s);
         frame.potentialEnergy = system.calcPotentialEnergy(s);
         const double energy = frame.kineticEnergy + frame.potentialEnergy;
