@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "allocation_counter.hpp"
+#include "support/allocation_counter.hpp"
 #include "benchmark_models.hpp"
 #include "sinew/core/assembly_schedule.hpp"
 #include "sinew/core/data.hpp"
@@ -54,9 +54,9 @@ bool prepareAgreedState(benchmark::State& state, ModelFixture* fixture) {
 template <class Evaluate>
 void countAllocations(benchmark::State& state, Evaluate&& evaluate) {
     evaluate();
-    const long long before = getAllocationCount();
+    const long long before = sinew::test::getAllocationCount();
     evaluate();
-    state.counters["allocations"] = static_cast<double>(getAllocationCount() - before);
+    state.counters["allocations"] = static_cast<double>(sinew::test::getAllocationCount() - before);
 }
 
 // Everything an integrator step needs from sinew for udot: link poses and velocities, wire paths, speeds

@@ -37,7 +37,7 @@ public:
         : model_(model),
           nq_(model.getNumQ()),
           nu_(model.getNumU()),
-          schedule_(model, AssemblySchedule::Kind::Serial, hangLink),
+          schedule_(model, AssemblySchedule::Kind::Automatic, hangLink),
           data_(model),
           fd_(model, schedule_),
           q_(nq_),

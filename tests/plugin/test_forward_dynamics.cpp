@@ -117,23 +117,18 @@ Comparison compareWithSimbody(const Model& model, std::mt19937& rng, int hangLin
 // Random models of 2 to 200 links with 0 to 10 loops: chains, binary and random trees, free, ball and
 // weld roots, ball and pin joints, wires.
 std::vector<test::NamedModel> makeClosedChainModels(int count) {
-    std::vector<test::NamedModel> models;
-    const RandomModelOptions::Topology topologies[] = {RandomModelOptions::Topology::RandomTree,
-                                                       RandomModelOptions::Topology::Chain,
-                                                       RandomModelOptions::Topology::BinaryTree};
-    const JointType roots[] = {JointType::Free, JointType::Ball, JointType::Weld};
-    for (int i = 0; i < count; ++i) {
-        RandomModelOptions o;
-        o.seed = static_cast<unsigned>(2000 + i);
-        o.numLinks = 2 + (i * 37) % 199;
-        o.topology = topologies[i % 3];
-        o.rootJoint = roots[(i / 3) % 3];
-        o.numLoops = i % 11;
-        o.numWires = 2 * o.numLinks;
-        o.maxViaPoints = i % 3;
-        models.push_back({test::describe(o), generateRandomModel(o)});
-    }
-    return models;
+    test::RandomModelSweep sweep;
+    sweep.count = count;
+    sweep.firstLinks = 2;
+    sweep.linkStride = 37;
+    sweep.linkRange = 199;
+    sweep.loopCycle = 11;
+    sweep.wiresBase = 0;
+    sweep.wiresPerLink = 2;
+    sweep.viaCycle = 3;
+    sweep.virtualLinks = false;
+    sweep.seedBase = 2000;
+    return test::makeRandomModels(sweep);
 }
 
 void expectAgreement(const std::vector<test::NamedModel>& models, const char* what, unsigned seed, bool hang = false) {

@@ -3,14 +3,19 @@
 #include <cstddef>
 #include <cstdlib>
 
+namespace {
+long long allocationCount = 0;
+}  // namespace
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kCounting = false;
+#else
+constexpr bool kCounting = true;
+
 // glibc's own entry points, which the interposed functions forward to.
 extern "C" void* __libc_malloc(std::size_t size);
 extern "C" void* __libc_calloc(std::size_t count, std::size_t size);
 extern "C" void* __libc_realloc(void* pointer, std::size_t size);
-
-namespace {
-long long allocationCount = 0;
-}  // namespace
 
 extern "C" void* malloc(std::size_t size) noexcept {
     ++allocationCount;
@@ -26,9 +31,12 @@ extern "C" void* realloc(void* pointer, std::size_t size) noexcept {
     ++allocationCount;
     return __libc_realloc(pointer, size);
 }
+#endif
 
-namespace sinew_benchmarks {
+namespace sinew::test {
+
+bool isCountingAllocations() { return kCounting; }
 
 long long getAllocationCount() { return allocationCount; }
 
-}  // namespace sinew_benchmarks
+}  // namespace sinew::test
