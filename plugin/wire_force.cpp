@@ -12,38 +12,45 @@ SimTK::Vec3 WireForce::findStationInGround(const SimTK::State& state, std::size_
     return matter_.getMobilizedBody(path_[k].body).findStationLocationInGround(state, path_[k].p_B);
 }
 
-SimTK::Vec3 WireForce::calcSegmentDirection(const SimTK::State& state, std::size_t k, double& length) const {
-    const SimTK::Vec3 segment = findStationInGround(state, k + 1) - findStationInGround(state, k);
-    length = segment.norm();
-    return length > 1e-12 ? segment / length : SimTK::Vec3(0);
+// One pass over the stations, each located once: length and lengthening speed together.
+void WireForce::measure(const SimTK::State& state, double& length, double& speed) const {
+    length = speed = 0;
+    SimTK::Vec3 p0, v0;
+    matter_.getMobilizedBody(path_[0].body).findStationLocationAndVelocityInGround(state, path_[0].p_B, p0, v0);
+    for (std::size_t k = 1; k < path_.size(); ++k) {
+        SimTK::Vec3 p1, v1;
+        matter_.getMobilizedBody(path_[k].body).findStationLocationAndVelocityInGround(state, path_[k].p_B, p1, v1);
+        const SimTK::Vec3 segment = p1 - p0;
+        const double l = segment.norm();
+        length += l;
+        if (l > 1e-12) speed += SimTK::dot(segment / l, v1 - v0);
+        p0 = p1;
+        v0 = v1;
+    }
 }
 
 double WireForce::calcLength(const SimTK::State& state) const {
-    double total = 0;
-    for (std::size_t k = 0; k + 1 < path_.size(); ++k) {
-        double length = 0;
-        calcSegmentDirection(state, k, length);
-        total += length;
+    double length = 0;
+    SimTK::Vec3 p0 = findStationInGround(state, 0);
+    for (std::size_t k = 1; k < path_.size(); ++k) {
+        const SimTK::Vec3 p1 = findStationInGround(state, k);
+        length += (p1 - p0).norm();
+        p0 = p1;
     }
-    return total;
+    return length;
 }
 
 double WireForce::calcLengtheningSpeed(const SimTK::State& state) const {
-    double speed = 0;
-    for (std::size_t k = 0; k + 1 < path_.size(); ++k) {
-        double length = 0;
-        const SimTK::Vec3 e = calcSegmentDirection(state, k, length);
-        const SimTK::Vec3 v0 = matter_.getMobilizedBody(path_[k].body).findStationVelocityInGround(state, path_[k].p_B);
-        const SimTK::Vec3 v1 =
-            matter_.getMobilizedBody(path_[k + 1].body).findStationVelocityInGround(state, path_[k + 1].p_B);
-        speed += SimTK::dot(e, v1 - v0);
-    }
+    double length = 0, speed = 0;
+    measure(state, length, speed);
     return speed;
 }
 
 double WireForce::calcTension(const SimTK::State& state) const {
+    double length = 0, speed = 0;
+    measure(state, length, speed);
     try {
-        return law_->calcTension(WireState{calcLength(state), calcLengtheningSpeed(state), state.getTime()});
+        return law_->calcTension(WireState{length, speed, state.getTime()});
     } catch (const Error& e) {
         throw Error("wire '" + name_ + "' at t = " + std::to_string(state.getTime()) + " s: " + e.what());
     }
@@ -53,12 +60,18 @@ void WireForce::calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::Spati
                           SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector&) const {
     const double tension = calcTension(state);
     if (tension == 0) return;
+    SimTK::Vec3 p0 = findStationInGround(state, 0);
     for (std::size_t k = 0; k + 1 < path_.size(); ++k) {
-        if (path_[k].body == path_[k + 1].body) continue;
-        double length = 0;
-        const SimTK::Vec3 f_G = tension * calcSegmentDirection(state, k, length);
-        matter_.getMobilizedBody(path_[k].body).applyForceToBodyPoint(state, path_[k].p_B, f_G, bodyForces);
-        matter_.getMobilizedBody(path_[k + 1].body).applyForceToBodyPoint(state, path_[k + 1].p_B, -f_G, bodyForces);
+        const SimTK::Vec3 p1 = findStationInGround(state, k + 1);
+        const SimTK::Vec3 segment = p1 - p0;
+        const double l = segment.norm();
+        // A segment with both ends on one body, or collapsed to a point, pulls on nothing.
+        if (path_[k].body != path_[k + 1].body && l > 1e-12) {
+            const SimTK::Vec3 f_G = tension * segment / l;
+            matter_.getMobilizedBody(path_[k].body).applyForceToBodyPoint(state, path_[k].p_B, f_G, bodyForces);
+            matter_.getMobilizedBody(path_[k + 1].body).applyForceToBodyPoint(state, path_[k + 1].p_B, -f_G, bodyForces);
+        }
+        p0 = p1;
     }
 }
 

@@ -35,8 +35,7 @@ public:
 
 private:
     SimTK::Vec3 findStationInGround(const SimTK::State& state, std::size_t k) const;
-    // Unit vector from station k to k+1 and the segment's length (zero vector for a collapsed segment).
-    SimTK::Vec3 calcSegmentDirection(const SimTK::State& state, std::size_t k, double& length) const;
+    void measure(const SimTK::State& state, double& length, double& speed) const;
 
     const SimTK::SimbodyMatterSubsystem& matter_;
     std::string name_;
