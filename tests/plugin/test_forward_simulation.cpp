@@ -1,8 +1,10 @@
-// Forward simulation through Simbody with sinew's wires: energy conservation with conservative wires,
-// the hang-by weld, and clear refusals.
+// Forward simulation with both engines (Simbody with sinew's wires, and sinew's own): energy conservation
+// with conservative wires, the hang-by weld, and clear refusals.
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <functional>
+#include <utility>
 #include <random>
 #include <regex>
 
@@ -15,49 +17,52 @@
 namespace sinew {
 namespace {
 
-struct EnergyRecord {
-    double initial = 0, maxDrift = 0, peakKinetic = 0;
-    int frames = 0;
-};
+using Simulate = SimulationSummary (*)(const Model&, const ForwardSimulationOptions&,
+                                      const std::function<void(const SimulationFrame&)>&);
+const std::pair<const char*, Simulate> kEngines[] = {{"simbody", &simulateForward}, {"sinew", &simulateForwardSinew}};
 
 // Relative drift: max |E(t) - E(0)| over 1 s divided by the peak kinetic energy (the energy that moves
 // between kinetic, gravitational and elastic forms; E itself depends on the arbitrary gravity datum).
-EnergyRecord simulateEnergy(const Model& model, const Eigen::VectorXd& u0, const std::string& hangBy) {
+double simulateEnergyDrift(Simulate simulate, const Model& model, const Eigen::VectorXd& u0, const std::string& hangBy,
+                           SimulationSummary& summary) {
     ForwardSimulationOptions options;
-    options.duration = 1.0;
-    options.reportInterval = 0.01;
     options.accuracy = 1e-10;
     options.hangBy = hangBy;
     options.initialSpeeds = u0;
-    EnergyRecord record;
-    simulateForward(model, options, [&](const SimulationFrame& frame) {
-        const double energy = frame.kineticEnergy + frame.potentialEnergy;
-        if (record.frames++ == 0) record.initial = energy;
-        record.maxDrift = std::max(record.maxDrift, std::abs(energy - record.initial));
-        record.peakKinetic = std::max(record.peakKinetic, frame.kineticEnergy);
+    summary = simulate(model, options, [&](const SimulationFrame& frame) {
         EXPECT_TRUE(frame.tensions.allFinite());
         EXPECT_GE(frame.tensions.minCoeff(), 0.0);
     });
-    return record;
+    EXPECT_EQ(summary.frames, 101);
+    return summary.maxEnergyDrift / summary.peakKineticEnergy;
 }
 
+// Both engines. Odd cases hang by a middle link and start at rest; even ones fly free with random speeds,
+// projected onto the loop constraints.
 TEST(ForwardSimulation, ConservesEnergyWithUndampedWiresAndLoops) {
-    std::mt19937 rng(21);
-    for (int i = 0; i < 6; ++i) {
-        RandomModelOptions o;
-        o.seed = static_cast<unsigned>(300 + i);
-        o.numLinks = 3 + 2 * i;
-        o.topology = i % 2 ? RandomModelOptions::Topology::Chain : RandomModelOptions::Topology::RandomTree;
-        o.rootJoint = i % 3 == 0 ? JointType::Free : JointType::Ball;
-        o.numLoops = i % 3;
-        o.numWires = 3 * o.numLinks;
-        o.damping = 0;
-        const Model model = generateRandomModel(o);
-        const EnergyRecord r = simulateEnergy(model, generateRandomSpeeds(model, rng, 1.0), "");
-        ASSERT_EQ(r.frames, 101);
-        ASSERT_GT(r.peakKinetic, 1e-3) << test::describe(o);
-        std::printf("%s: relative energy drift %.2e over 1 s\n", test::describe(o).c_str(), r.maxDrift / r.peakKinetic);
-        EXPECT_LE(r.maxDrift / r.peakKinetic, 1e-4) << test::describe(o) << " drift " << r.maxDrift << " J";
+    for (const auto& [engine, simulate] : kEngines) {
+        std::mt19937 rng(21);
+        for (int i = 0; i < 6; ++i) {
+            RandomModelOptions o;
+            o.seed = static_cast<unsigned>(300 + i);
+            o.numLinks = 3 + 2 * i;
+            o.topology = i % 2 ? RandomModelOptions::Topology::Chain : RandomModelOptions::Topology::RandomTree;
+            o.rootJoint = i % 3 == 0 ? JointType::Free : JointType::Ball;
+            o.numLoops = 1 + i % 2;
+            o.numWires = 3 * o.numLinks;
+            o.damping = 0;
+            const Model model = generateRandomModel(o);
+            const std::string hangBy = i % 2 ? model.getLink(o.numLinks / 2).name : "";
+            SimulationSummary s;
+            const double drift = simulateEnergyDrift(simulate, model, i % 2 ? Eigen::VectorXd() : generateRandomSpeeds(model, rng, 1.0),
+                                                     hangBy, s);
+            ASSERT_GT(s.peakKineticEnergy, 1e-3) << test::describe(o);
+            std::printf("%s, %s%s: relative energy drift %.2e over 1 s, constraint violation %.1e m, %d steps\n", engine,
+                        test::describe(o).c_str(), hangBy.empty() ? "" : (" hung by " + hangBy).c_str(), drift,
+                        s.maxConstraintViolation, s.steps);
+            EXPECT_LE(drift, 1e-4) << engine << " " << test::describe(o);
+            EXPECT_LE(s.maxConstraintViolation, 1e-7) << engine << " " << test::describe(o);
+        }
     }
 }
 
@@ -66,16 +71,21 @@ TEST(ForwardSimulation, ConservesEnergyOnUndampedArm26) {
     std::string text = writeModelText(arm.model);
     text = std::regex_replace(text, std::regex("damping: [0-9.eE+-]+"), "damping: 0");
     const Model undamped = readModelText(text, "arm26-undamped");
-    const EnergyRecord r = simulateEnergy(undamped, Eigen::VectorXd(), "base");
-    ASSERT_GT(r.peakKinetic, 0.1);
-    std::printf("arm26 undamped: relative energy drift %.2e over 1 s\n", r.maxDrift / r.peakKinetic);
-    EXPECT_LE(r.maxDrift / r.peakKinetic, 1e-4) << "drift " << r.maxDrift << " J";
+    for (const auto& [engine, simulate] : kEngines) {
+        SimulationSummary s;
+        const double drift = simulateEnergyDrift(simulate, undamped, Eigen::VectorXd(), "base", s);
+        ASSERT_GT(s.peakKineticEnergy, 0.1);
+        std::printf("%s, arm26 undamped: relative energy drift %.2e over 1 s\n", engine, drift);
+        EXPECT_LE(drift, 1e-4) << engine;
+    }
 }
 
 TEST(ForwardSimulation, DampedWiresDissipate) {
     const test::NamedModel arm = test::loadArm26();
-    const EnergyRecord r = simulateEnergy(arm.model, Eigen::VectorXd(), "base");
-    EXPECT_GT(r.maxDrift / r.peakKinetic, 1e-2);
+    for (const auto& [engine, simulate] : kEngines) {
+        SimulationSummary s;
+        EXPECT_GT(simulateEnergyDrift(simulate, arm.model, Eigen::VectorXd(), "base", s), 1e-2) << engine;
+    }
 }
 
 // Both engines: the hung link stays where it was while the rest of the body swings.
@@ -89,7 +99,7 @@ TEST(ForwardSimulation, HangByHoldsTheLinkAtItsInitialPose) {
     options.duration = 0.3;
     options.hangBy = model.getLink(3).name;
     options.accuracy = 1e-8;
-    for (auto simulate : {&simulateForward, &simulateForwardSinew}) {
+    for (const auto& [engine, simulate] : kEngines) {
         Data start(model), now(model);
         calcPositionKinematics(model, start, model.getDefaultQ());
         double worstOffset = 0, worstTravel = 0;
@@ -98,7 +108,7 @@ TEST(ForwardSimulation, HangByHoldsTheLinkAtItsInitialPose) {
             worstOffset = std::max(worstOffset, (now.p_GB[3] - start.p_GB[3]).norm());
             worstTravel = std::max(worstTravel, (now.p_GB[7] - start.p_GB[7]).norm());
         });
-        EXPECT_LE(worstOffset, 1e-6) << (simulate == &simulateForward ? "simbody" : "sinew");
+        EXPECT_LE(worstOffset, 1e-6) << engine;
         EXPECT_GT(worstTravel, 1e-3) << "the rest of the body should swing";
     }
 }

@@ -47,8 +47,8 @@ public:
         // the loops that became closable. The operations of a level are independent, so threads can share
         // them; a chain or a balanced tree needs O(log N) levels.
         Balanced,
-        // Whichever of the two does less work (sum over operations of the squared handle counts): serial
-        // for trees and local loops, balanced where loops stay open across long chains.
+        // Whichever of the two does less estimated work (sum over operations of the squared handle counts):
+        // serial for trees and local loops, balanced where loops stay open across long chains.
         Automatic
     };
 
