@@ -65,7 +65,6 @@ AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) 
     // Leaves: each body with the handles of the joints that touch it; then ground.
     const int numBodies = getNumBodies();
     handles_.assign(static_cast<std::size_t>(numBodies + 1), {});
-    auto leafOf = [&](int body) { return body == kGroundBody ? numBodies : body; };
     for (int j = 0; j < static_cast<int>(joints_.size()); ++j) {
         handles_[static_cast<std::size_t>(leafOf(joints_[static_cast<std::size_t>(j)].alphaBody))].push_back(2 * j);
         handles_[static_cast<std::size_t>(leafOf(joints_[static_cast<std::size_t>(j)].betaBody))].push_back(2 * j + 1);
@@ -89,16 +88,16 @@ AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) 
             // Join the pairs whose result has the fewest handles first; each subassembly once per level.
             auto cost = [&](int j) {
                 const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
-                return handles_[static_cast<std::size_t>(findCurrent(leafOf(joint.alphaBody)))].size() +
-                       handles_[static_cast<std::size_t>(findCurrent(leafOf(joint.betaBody)))].size();
+                return handles_[static_cast<std::size_t>(currentOf(joint.alphaBody))].size() +
+                       handles_[static_cast<std::size_t>(currentOf(joint.betaBody))].size();
             };
             std::stable_sort(pending.begin(), pending.end(), [&](int x, int y) { return cost(x) < cost(y); });
             std::set<int> busy;
             std::vector<int> later;
             for (int j : pending) {
                 const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
-                const int a = findCurrent(leafOf(joint.alphaBody));
-                const int b = findCurrent(leafOf(joint.betaBody));
+                const int a = currentOf(joint.alphaBody);
+                const int b = currentOf(joint.betaBody);
                 if (busy.count(a) || busy.count(b)) {
                     later.push_back(j);
                     continue;
@@ -113,6 +112,10 @@ AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) 
     }
 }
 
+int AssemblySchedule::leafOf(int body) const { return body == kGroundBody ? getGroundLeaf() : body; }
+
+int AssemblySchedule::currentOf(int body) const { return findCurrent(leafOf(body)); }
+
 int AssemblySchedule::findCurrent(int subassembly) const {
     int root = subassembly;
     while (mergedInto_[static_cast<std::size_t>(root)] != root) root = mergedInto_[static_cast<std::size_t>(root)];
@@ -126,11 +129,10 @@ int AssemblySchedule::findCurrent(int subassembly) const {
 
 void AssemblySchedule::emitJoin(int j) {
     const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
-    const int groundLeaf = getGroundLeaf();
     AssemblyOperation join;
     join.joint = j;
-    join.first = findCurrent(joint.alphaBody == kGroundBody ? groundLeaf : joint.alphaBody);
-    join.second = findCurrent(joint.betaBody == kGroundBody ? groundLeaf : joint.betaBody);
+    join.first = currentOf(joint.alphaBody);
+    join.second = currentOf(joint.betaBody);
     join.result = static_cast<int>(handles_.size());
     join.alphaPosition = positionOf(handles_[static_cast<std::size_t>(join.first)], 2 * j);
     join.betaPosition = positionOf(handles_[static_cast<std::size_t>(join.second)], 2 * j + 1);
@@ -149,7 +151,7 @@ void AssemblySchedule::emitClose(int j) {
     AssemblyOperation close;
     close.isClose = true;
     close.joint = j;
-    close.first = findCurrent(joint.alphaBody == kGroundBody ? getGroundLeaf() : joint.alphaBody);
+    close.first = currentOf(joint.alphaBody);
     close.result = static_cast<int>(handles_.size());
     const std::vector<int> before = handles_[static_cast<std::size_t>(close.first)];
     close.alphaPosition = positionOf(before, 2 * j);
@@ -164,8 +166,6 @@ void AssemblySchedule::emitClose(int j) {
 // Closes every loop (and the hang) whose ends now share a subassembly: the smallest one that contains both.
 // Serially one after another; balanced, one close per subassembly per level.
 void AssemblySchedule::closeReadyLoops(bool oneCloseLevelPerSubassembly) {
-    const int groundLeaf = getGroundLeaf();
-    auto current = [&](int body) { return findCurrent(body == kGroundBody ? groundLeaf : body); };
     bool closedAny = true;
     while (closedAny) {
         closedAny = false;
@@ -173,8 +173,8 @@ void AssemblySchedule::closeReadyLoops(bool oneCloseLevelPerSubassembly) {
         for (std::size_t j = 0; j < joints_.size(); ++j) {
             const AssemblyJoint& joint = joints_[j];
             if (joint.kind == AssemblyJoint::Kind::Tree || closed_[j]) continue;
-            const int s = current(joint.alphaBody);
-            if (s != current(joint.betaBody) || busy.count(s)) continue;
+            const int s = currentOf(joint.alphaBody);
+            if (s != currentOf(joint.betaBody) || busy.count(s)) continue;
             emitClose(static_cast<int>(j));
             closedAny = true;
             if (oneCloseLevelPerSubassembly) busy.insert(operations_.back().result);

@@ -76,6 +76,8 @@ public:
     double getCost() const;
 
 private:
+    int leafOf(int body) const;     // the body's leaf subassembly (ground's for kGroundBody)
+    int currentOf(int body) const;  // the subassembly that holds the body now
     int findCurrent(int subassembly) const;
     void emitJoin(int joint);
     void emitClose(int joint);
