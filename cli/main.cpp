@@ -17,6 +17,14 @@ const char* kUsage =
     "                 [--hang-by LINK] [--duration T] [--interval DT] [--accuracy A] [-o DIR]\n"
     "                                  passive forward simulation with sinew's or Simbody's engine;\n"
     "                                  writes .sto files of coordinates, speeds, wire tensions and energy\n"
+    "  import MODEL.osim -o MODEL.yaml   converts an OpenSim 4 model, listing what it leaves out\n"
+    "  inverse-dynamics MODEL MOTION [--external-loads X.xml] [--lowpass HZ] -o OUT.sto\n"
+    "                                  generalized forces per frame, processed as OpenSim's ID tool\n"
+    "  run-tool SETUP.xml [-o DIR]     runs an OpenSim InverseDynamicsTool or\n"
+    "                                  AnalyzeTool (StaticOptimization) setup as it stands\n"
+    "  moment-arms MODEL [--motion M] [-o DIR]   wire lengths and moment arms (OpenSim MuscleAnalysis files)\n"
+    "  tensions MODEL MOTION --method lp|qp|so [--external-loads X.xml] [--lowpass HZ] -o TENSIONS.sto\n"
+    "                                  wire tensions per frame (LP, least squares or static optimization)\n"
     "\n"
     "Run 'sinew COMMAND --help' for a command's options.\n";
 
@@ -32,6 +40,11 @@ int main(int argc, char** argv) {
     try {
         if (command == "info") return sinew::cli::runInfo(args);
         if (command == "simulate") return sinew::cli::runSimulate(args);
+        if (command == "import") return sinew::cli::runImport(args);
+        if (command == "inverse-dynamics") return sinew::cli::runInverseDynamicsCommand(args);
+        if (command == "run-tool") return sinew::cli::runRunTool(args);
+        if (command == "moment-arms") return sinew::cli::runMomentArms(args);
+        if (command == "tensions") return sinew::cli::runTensions(args);
         std::fprintf(stderr, "sinew: unknown command '%s'\n\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const std::exception& e) {

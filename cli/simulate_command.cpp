@@ -2,6 +2,7 @@
 #include <filesystem>
 #include <string>
 
+#include "arguments.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
 #include "sinew/core/error.hpp"
@@ -29,56 +30,34 @@ const char* kUsage =
 
 enum class Engine { Simbody, Sinew };
 
-double parseNumber(const std::string& option, const std::string& text) {
-    try {
-        std::size_t used = 0;
-        const double value = std::stod(text, &used);
-        if (used == text.size()) return value;
-    } catch (const std::exception&) {
-    }
-    throw Error(option + " expects a number, got '" + text + "'");
-}
-
 }  // namespace
 
 int runSimulate(const std::vector<std::string>& args) {
     std::string modelPath, outputDir = "sinew_output";
     ForwardSimulationOptions options;
     Engine engine = Engine::Simbody;
-    for (std::size_t i = 0; i < args.size(); ++i) {
-        const std::string& arg = args[i];
-        if (arg == "--help" || arg == "-h") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        }
-        auto value = [&]() -> const std::string& {
-            if (i + 1 >= args.size()) throw Error(arg + " needs a value");
-            return args[++i];
-        };
-        if (arg == "--engine") {
-            const std::string& name = value();
+    ArgumentReader reader(args, kUsage);
+    while (reader.next()) {
+        if (reader.is("--engine")) {
+            const std::string& name = reader.value();
             if (name == "simbody") engine = Engine::Simbody;
             else if (name == "sinew") engine = Engine::Sinew;
             else throw Error("unknown engine '" + name + "' (expected sinew or simbody)");
-        } else if (arg == "--integrator") {
-            const std::string& name = value();
+        } else if (reader.is("--integrator")) {
+            const std::string& name = reader.value();
             if (name == "adaptive") options.integrator = ForwardSimulationOptions::Integrator::Adaptive;
             else if (name == "rk4") options.integrator = ForwardSimulationOptions::Integrator::RungeKutta4Fixed;
             else throw Error("unknown integrator '" + name + "' (expected adaptive or rk4)");
-        } else if (arg == "--step") options.fixedStep = parseNumber(arg, value());
-        else if (arg == "--hang-by") options.hangBy = value();
-        else if (arg == "--duration") options.duration = parseNumber(arg, value());
-        else if (arg == "--interval") options.reportInterval = parseNumber(arg, value());
-        else if (arg == "--accuracy") options.accuracy = parseNumber(arg, value());
-        else if (arg == "-o" || arg == "--output") outputDir = value();
-        else if (!arg.empty() && arg[0] == '-') throw Error("unknown option '" + arg + "'\n" + kUsage);
-        else if (modelPath.empty()) modelPath = arg;
-        else throw Error("unexpected argument '" + arg + "'");
+        } else if (reader.is("--step")) options.fixedStep = reader.number();
+        else if (reader.is("--hang-by")) options.hangBy = reader.value();
+        else if (reader.is("--duration")) options.duration = reader.number();
+        else if (reader.is("--interval")) options.reportInterval = reader.number();
+        else if (reader.is("--accuracy")) options.accuracy = reader.number();
+        else if (reader.is("-o", "--output")) outputDir = reader.value();
+        else reader.takePositional({&modelPath});
     }
-    if (modelPath.empty()) {
-        std::fputs(kUsage, stderr);
-        return 2;
-    }
+    if (reader.helpShown()) return 0;
+    if (modelPath.empty()) return reader.failWithUsage();
     const Model model = readModelFile(modelPath);
     std::filesystem::create_directories(outputDir);
 

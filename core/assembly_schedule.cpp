@@ -1,6 +1,8 @@
 #include "sinew/core/assembly_schedule.hpp"
 
 #include <algorithm>
+#include <cassert>
+#include <numeric>
 #include <set>
 
 #include "sinew/core/error.hpp"
@@ -19,71 +21,102 @@ std::vector<int> without(const std::vector<int>& handles, int a, int b = -1) {
     return rest;
 }
 
+// Written as the list of what is handled, so that a joint type added to the model is refused here until the
+// dynamics learns it.
+bool isSupported(JointType type) {
+    return type == JointType::Free || type == JointType::Ball || type == JointType::Pin || type == JointType::Weld;
+}
+
+AssemblyJoint::Motion motionOf(JointType type) {
+    if (type == JointType::Free) return AssemblyJoint::Motion::Free;
+    if (type == JointType::Pin) return AssemblyJoint::Motion::Pin;
+    return AssemblyJoint::Motion::Ball;
+}
+
 }  // namespace
 
 AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) : kind_(kind) {
     if (kind == Kind::Automatic) {
         AssemblySchedule serial(model, Kind::Serial, hangLink);
         AssemblySchedule balanced(model, Kind::Balanced, hangLink);
-        // The estimate already overstates the balanced schedule (1.6-1.9x the serial one on bare trees, where it
-        // measures 1.1-1.3x), so the plain comparison leans serial wherever the two are close.
         *this = balanced.getCost() < serial.getCost() ? std::move(balanced) : std::move(serial);
         return;
     }
-    linkBody_.assign(static_cast<std::size_t>(model.getNumLinks()), kGroundBody);
-    for (int i = 0; i < model.getNumLinks(); ++i) {
-        const Link& link = model.getLink(i);
-        if (link.isVirtual)
-            throw Error("model '" + model.getName() + "': virtual link '" + link.name +
-                        "' is massless; the assembly-disassembly solver does not treat virtual links yet");
-        const Joint& joint = model.getJoint(i);
-        const std::size_t l = static_cast<std::size_t>(i);
-        if (joint.type == JointType::Weld) {
-            linkBody_[l] = joint.parent == kGround ? kGroundBody : linkBody_[static_cast<std::size_t>(joint.parent)];
-            if (linkBody_[l] != kGroundBody) bodyLinks_[static_cast<std::size_t>(linkBody_[l])].push_back(i);
-            continue;
-        }
-        linkBody_[l] = static_cast<int>(bodyLinks_.size());
-        bodyLinks_.push_back({i});
-        const int parentBody = joint.parent == kGround ? kGroundBody : linkBody_[static_cast<std::size_t>(joint.parent)];
-        joints_.push_back({AssemblyJoint::Kind::Tree, i, parentBody, linkBody_[l]});
-    }
+    buildBodies(model);
     const int numTreeJoints = static_cast<int>(joints_.size());
     for (int k = 0; k < model.getNumLoops(); ++k) {
         const Loop& loop = model.getLoop(k);
         const int a = linkBody_[static_cast<std::size_t>(loop.linkA)];
         const int b = linkBody_[static_cast<std::size_t>(loop.linkB)];
+        if (a == kNoBody || b == kNoBody)
+            throw Error("model '" + model.getName() + "': loop '" + loop.name + "' has an end on virtual link '" +
+                        model.getLink(a == kNoBody ? loop.linkA : loop.linkB).name +
+                        "'; loops join links with mass only");
         if (a == b)
             throw Error("model '" + model.getName() + "': loop '" + loop.name + "' joins links '" +
                         model.getLink(loop.linkA).name + "' and '" + model.getLink(loop.linkB).name +
                         "', which are welded together");
-        joints_.push_back({AssemblyJoint::Kind::Loop, k, a, b});
+        joints_.push_back({AssemblyJoint::Kind::Loop, AssemblyJoint::Motion::Ball, k, a, b});
     }
-    if (hangLink >= 0 && linkBody_[static_cast<std::size_t>(hangLink)] != kGroundBody)
-        joints_.push_back({AssemblyJoint::Kind::Hang, hangLink, kGroundBody, linkBody_[static_cast<std::size_t>(hangLink)]});
+    if (hangLink >= 0) {
+        const int body = linkBody_[static_cast<std::size_t>(hangLink)];
+        if (body == kNoBody)
+            throw Error("model '" + model.getName() + "': cannot hang by virtual link '" + model.getLink(hangLink).name +
+                        "' (it is massless); hang by a link with mass");
+        if (body != kGroundBody)
+            joints_.push_back({AssemblyJoint::Kind::Hang, AssemblyJoint::Motion::Weld, hangLink, kGroundBody, body});
+    }
+    chooseTreeOperations(model, hangLink);
 
-    // Leaves: each body with the handles of the joints that touch it; then ground.
+    // Leaves: each body with the handles of the joints that touch it, but for what is folded: both handles
+    // of an Absorb, the alpha handle of an AbsorbSubassembly. Then ground.
     const int numBodies = getNumBodies();
     handles_.assign(static_cast<std::size_t>(numBodies + 1), {});
     for (int j = 0; j < static_cast<int>(joints_.size()); ++j) {
-        handles_[static_cast<std::size_t>(leafOf(joints_[static_cast<std::size_t>(j)].alphaBody))].push_back(2 * j);
-        handles_[static_cast<std::size_t>(leafOf(joints_[static_cast<std::size_t>(j)].betaBody))].push_back(2 * j + 1);
+        const AssemblyOperation::Kind how = j < numTreeJoints ? treeOperation_[static_cast<std::size_t>(j)]
+                                                              : AssemblyOperation::Kind::Join;
+        const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
+        if (how == AssemblyOperation::Kind::Join) handles_[static_cast<std::size_t>(leafOf(joint.alphaBody))].push_back(2 * j);
+        if (how != AssemblyOperation::Kind::Absorb) handles_[static_cast<std::size_t>(leafOf(joint.betaBody))].push_back(2 * j + 1);
     }
     mergedInto_.resize(handles_.size());
-    for (std::size_t s = 0; s < mergedInto_.size(); ++s) mergedInto_[s] = static_cast<int>(s);
+    std::iota(mergedInto_.begin(), mergedInto_.end(), 0);
     closed_.assign(joints_.size(), false);
-    levelStarts_.push_back(0);
 
     if (kind == Kind::Serial) {
-        // Bodies are numbered parents first, so the reverse order visits tips first.
-        for (int j = numTreeJoints - 1; j >= 0; --j) {
-            emitJoin(j);
-            levelStarts_.push_back(static_cast<int>(operations_.size()));
-            closeReadyLoops(false);
+        // Bodies are numbered parents first, so the reverse order visits tips first: fold the children that
+        // no loop crosses into the body, then, if its subtree holds loop ends, make its leaf and join the
+        // children that loops cross. Ground (kGroundBody = -1) comes last; its leaf needs no operation (it
+        // does not move: Phi = 0, b = 0).
+        std::vector<std::vector<int>> children(static_cast<std::size_t>(numBodies + 1));
+        for (int j = 0; j < numTreeJoints; ++j)
+            children[static_cast<std::size_t>(leafOf(joints_[static_cast<std::size_t>(j)].alphaBody))].push_back(j);
+        for (int body = numBodies - 1; body >= kGroundBody; --body) {
+            const std::vector<int>& mine = children[static_cast<std::size_t>(leafOf(body))];
+            for (int j : mine) {
+                const AssemblyOperation::Kind how = treeOperation_[static_cast<std::size_t>(j)];
+                if (how == AssemblyOperation::Kind::Absorb) emitAbsorb(j);
+                if (how == AssemblyOperation::Kind::AbsorbSubassembly) emitAbsorbSubassembly(j);
+            }
+            if (body != kGroundBody) {
+                if (handles_[static_cast<std::size_t>(body)].empty()) continue;  // folded whole into its parent
+                emitLeaf(body);
+            }
+            for (int j : mine) {
+                if (treeOperation_[static_cast<std::size_t>(j)] != AssemblyOperation::Kind::Join) continue;
+                emitJoin(j);
+                closeReadyLoops(false);
+            }
         }
+        // One operation per level: each depends on the one before.
+        levelStarts_.resize(operations_.size() + 1);
+        std::iota(levelStarts_.begin(), levelStarts_.end(), 0);
     } else {
+        levelStarts_.push_back(0);
+        for (int body = 0; body < numBodies; ++body) emitLeaf(body);
+        levelStarts_.push_back(static_cast<int>(operations_.size()));
         std::vector<int> pending(static_cast<std::size_t>(numTreeJoints));
-        for (int j = 0; j < numTreeJoints; ++j) pending[static_cast<std::size_t>(j)] = j;
+        std::iota(pending.begin(), pending.end(), 0);
         while (!pending.empty()) {
             // Join the pairs whose result has the fewest handles first; each subassembly once per level.
             auto cost = [&](int j) {
@@ -112,6 +145,92 @@ AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) 
     }
 }
 
+// Bodies and their inboard tree joints (assembly joint b for body b); welded links merged into their
+// parent's body, with the body's mass properties in its first link's frame.
+void AssemblySchedule::buildBodies(const Model& model) {
+    linkBody_.assign(static_cast<std::size_t>(model.getNumLinks()), kGroundBody);
+    // Pose of each link's frame in its body's first link's frame (welds only).
+    std::vector<Eigen::Matrix3d> R_1L(linkBody_.size(), Eigen::Matrix3d::Identity());
+    std::vector<Eigen::Vector3d> p_1L(linkBody_.size(), Eigen::Vector3d::Zero());
+    for (int i = 0; i < model.getNumLinks(); ++i) {
+        const Link& link = model.getLink(i);
+        const Joint& joint = model.getJoint(i);
+        const std::size_t l = static_cast<std::size_t>(i);
+        if (link.isVirtual) {
+            linkBody_[l] = kNoBody;
+            virtualLinks_.push_back(i);
+            continue;
+        }
+        if (!isSupported(joint.type))
+            throw Error("model '" + model.getName() + "': joint '" + joint.name + "' of link '" + link.name + "' is a " +
+                        toString(joint.type) +
+                        " joint; the assembly-disassembly forward dynamics handles free, ball, pin and weld joints");
+        const int parentBody = joint.parent == kGround ? kGroundBody : linkBody_[static_cast<std::size_t>(joint.parent)];
+        if (parentBody == kNoBody)
+            throw Error("model '" + model.getName() + "': link '" + link.name + "' hangs from virtual link '" +
+                        model.getLink(joint.parent).name + "'; virtual links carry no links");
+        if (joint.type == JointType::Weld) {
+            linkBody_[l] = parentBody;
+            if (parentBody == kGroundBody) continue;
+            const std::size_t parent = static_cast<std::size_t>(joint.parent);
+            const Eigen::Matrix3d R_PB = joint.R_PF * joint.R_BM.transpose();
+            R_1L[l] = R_1L[parent] * R_PB;
+            p_1L[l] = p_1L[parent] + R_1L[parent] * (joint.p_PF - R_PB * joint.p_BM);
+            bodies_[static_cast<std::size_t>(parentBody)].links.push_back(i);
+            continue;
+        }
+        linkBody_[l] = static_cast<int>(bodies_.size());
+        bodies_.push_back({{i}, 0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()});
+        joints_.push_back({AssemblyJoint::Kind::Tree, motionOf(joint.type), i, parentBody, linkBody_[l]});
+    }
+    for (AssemblyBody& body : bodies_) {
+        for (int link : body.links) {
+            const Link& info = model.getLink(link);
+            body.mass += info.mass;
+            body.com += info.mass * (p_1L[static_cast<std::size_t>(link)] + R_1L[static_cast<std::size_t>(link)] * info.com_B);
+        }
+        body.com /= body.mass;
+        for (int link : body.links) {
+            const Link& info = model.getLink(link);
+            const Eigen::Matrix3d& R = R_1L[static_cast<std::size_t>(link)];
+            const Eigen::Vector3d d = p_1L[static_cast<std::size_t>(link)] + R * info.com_B - body.com;
+            body.inertia += R * info.inertia_Bcom * R.transpose() +
+                            info.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+        }
+    }
+}
+
+// Serial schedules fold every subtree that no loop crosses into its parent: with Absorb when it holds no
+// loop end (nor the hung body), else with AbsorbSubassembly once its loops are closed; the subtrees that
+// loops (or the hang) cross are joined. The balanced schedule joins everything, to keep its O(log N) levels.
+void AssemblySchedule::chooseTreeOperations(const Model& model, int hangLink) {
+    const std::size_t numBodies = bodies_.size();
+    treeOperation_.assign(numBodies, AssemblyOperation::Kind::Join);
+    if (kind_ != Kind::Serial) return;
+    // Per body, over the loops (and the hang): how many ends its subtree holds, and whether one loop has
+    // exactly one end in it (crosses it).
+    std::vector<int> ends(numBodies, 0);
+    std::vector<bool> crossed(numBodies, false);
+    std::vector<int> endsOfThis(numBodies, 0);
+    auto addClosure = [&](int a, int b) {
+        std::fill(endsOfThis.begin(), endsOfThis.end(), 0);
+        for (int end : {a, b})
+            for (int body = end; body >= 0; body = joints_[static_cast<std::size_t>(body)].alphaBody)
+                ++endsOfThis[static_cast<std::size_t>(body)];
+        for (std::size_t body = 0; body < numBodies; ++body) {
+            ends[body] += endsOfThis[body];
+            if (endsOfThis[body] == 1) crossed[body] = true;
+        }
+    };
+    for (const Loop& loop : model.getLoops())
+        addClosure(linkBody_[static_cast<std::size_t>(loop.linkA)], linkBody_[static_cast<std::size_t>(loop.linkB)]);
+    if (hangLink >= 0) addClosure(linkBody_[static_cast<std::size_t>(hangLink)], kGroundBody);
+    for (std::size_t body = 0; body < numBodies; ++body) {
+        if (crossed[body]) continue;
+        treeOperation_[body] = ends[body] == 0 ? AssemblyOperation::Kind::Absorb : AssemblyOperation::Kind::AbsorbSubassembly;
+    }
+}
+
 int AssemblySchedule::leafOf(int body) const { return body == kGroundBody ? getGroundLeaf() : body; }
 
 int AssemblySchedule::currentOf(int body) const { return findCurrent(leafOf(body)); }
@@ -127,9 +246,36 @@ int AssemblySchedule::findCurrent(int subassembly) const {
     return root;
 }
 
+void AssemblySchedule::emitAbsorb(int j) {
+    AssemblyOperation absorb;
+    absorb.kind = AssemblyOperation::Kind::Absorb;
+    absorb.joint = j;
+    operations_.push_back(absorb);
+}
+
+void AssemblySchedule::emitAbsorbSubassembly(int j) {
+    AssemblyOperation absorb;
+    absorb.kind = AssemblyOperation::Kind::AbsorbSubassembly;
+    absorb.joint = j;
+    absorb.first = currentOf(joints_[static_cast<std::size_t>(j)].betaBody);
+    // Its loops are all closed: the joint's handle is the only one left.
+    assert(handles_[static_cast<std::size_t>(absorb.first)].size() == 1);
+    absorb.betaPosition = 0;
+    operations_.push_back(absorb);
+}
+
+void AssemblySchedule::emitLeaf(int body) {
+    AssemblyOperation leaf;
+    leaf.kind = AssemblyOperation::Kind::Leaf;
+    leaf.first = body;
+    leaf.result = leafOf(body);
+    operations_.push_back(leaf);
+}
+
 void AssemblySchedule::emitJoin(int j) {
     const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
     AssemblyOperation join;
+    join.kind = AssemblyOperation::Kind::Join;
     join.joint = j;
     join.first = currentOf(joint.alphaBody);
     join.second = currentOf(joint.betaBody);
@@ -149,7 +295,7 @@ void AssemblySchedule::emitJoin(int j) {
 void AssemblySchedule::emitClose(int j) {
     const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
     AssemblyOperation close;
-    close.isClose = true;
+    close.kind = AssemblyOperation::Kind::Close;
     close.joint = j;
     close.first = currentOf(joint.alphaBody);
     close.result = static_cast<int>(handles_.size());
@@ -178,7 +324,6 @@ void AssemblySchedule::closeReadyLoops(bool oneCloseLevelPerSubassembly) {
             emitClose(static_cast<int>(j));
             closedAny = true;
             if (oneCloseLevelPerSubassembly) busy.insert(operations_.back().result);
-            else levelStarts_.push_back(static_cast<int>(operations_.size()));
         }
         if (oneCloseLevelPerSubassembly && closedAny) levelStarts_.push_back(static_cast<int>(operations_.size()));
     }
@@ -187,8 +332,21 @@ void AssemblySchedule::closeReadyLoops(bool oneCloseLevelPerSubassembly) {
 double AssemblySchedule::getCost() const {
     double cost = 0;
     for (const AssemblyOperation& op : operations_) {
-        const double inputs = static_cast<double>(handles_[static_cast<std::size_t>(op.first)].size() +
-                                                  (op.isClose ? 0 : handles_[static_cast<std::size_t>(op.second)].size()));
+        double inputs = 1;
+        switch (op.kind) {
+            case AssemblyOperation::Kind::Absorb:
+            case AssemblyOperation::Kind::AbsorbSubassembly: break;
+            case AssemblyOperation::Kind::Leaf:
+                inputs = static_cast<double>(handles_[static_cast<std::size_t>(op.result)].size());
+                break;
+            case AssemblyOperation::Kind::Join:
+                inputs = static_cast<double>(handles_[static_cast<std::size_t>(op.first)].size() +
+                                             handles_[static_cast<std::size_t>(op.second)].size());
+                break;
+            case AssemblyOperation::Kind::Close:
+                inputs = static_cast<double>(handles_[static_cast<std::size_t>(op.first)].size());
+                break;
+        }
         cost += inputs * inputs;
     }
     return cost;

@@ -9,13 +9,26 @@ Data::Data(const Model& model) {
     p_GB.assign(links, Eigen::Vector3d::Zero());
     R_GF.assign(links, Eigen::Matrix3d::Identity());
     p_GM.assign(links, Eigen::Vector3d::Zero());
+    for (const Joint& joint : model.getJoints())
+        H_FM.push_back(JointMotion::Zero(6, joint.type == JointType::Custom ? joint.nu : 0));
     w_GB.assign(links, Eigen::Vector3d::Zero());
     v_GB.assign(links, Eigen::Vector3d::Zero());
+    alpha_GB.assign(links, Eigen::Vector3d::Zero());
+    a_GB.assign(links, Eigen::Vector3d::Zero());
     p_GP.assign(points, Eigen::Vector3d::Zero());
     v_GP.assign(points, Eigen::Vector3d::Zero());
     dLdp_GP.assign(points, Eigen::Vector3d::Zero());
     wireLength = Eigen::VectorXd::Zero(model.getNumWires());
     wireSpeed = Eigen::VectorXd::Zero(model.getNumWires());
+    q = model.getDefaultQ();
+    u = Eigen::VectorXd::Zero(model.getNumU());
+    int pathEntries = 0;
+    for (const Wire& wire : model.getWires()) {
+        wirePathStart.push_back(pathEntries);
+        if (!wire.isPolyline()) pathEntries += wire.numPoints + 2 * static_cast<int>(wire.wraps.size());
+    }
+    wirePath.resize(static_cast<std::size_t>(pathEntries));
+    wirePathSize.assign(wirePathStart.size(), 0);
     F_G.assign(links, SpatialVector::Zero());
 }
 

@@ -12,34 +12,101 @@ namespace {
 // reference. Moments then stay small wherever the model is, which keeps digits on large models far from
 // the ground origin (docs/closed-chain.md, "Reference points").
 
+using Motion = AssemblyJoint::Motion;
+
 // A spatial force w about the joint centre with S^T w = tau: the joint's generalized forces as a force on
 // the child.
-SpatialVector calcJointForce(const Joint& joint, const Eigen::Matrix3d& R, const double* tau) {
+SpatialVector calcJointForce(Motion motion, const Eigen::Matrix3d& R, const double* tau) {
     SpatialVector w = SpatialVector::Zero();
-    switch (joint.type) {
-        case JointType::Free:
+    switch (motion) {
+        case Motion::Free:
             w.head<3>() = R * Eigen::Map<const Eigen::Vector3d>(tau);
             w.tail<3>() = R * Eigen::Map<const Eigen::Vector3d>(tau + 3);
             break;
-        case JointType::Ball: w.head<3>() = R * Eigen::Map<const Eigen::Vector3d>(tau); break;
-        case JointType::Pin: w.head<3>() = R.col(2) * tau[0]; break;
-        case JointType::Weld: break;
+        case Motion::Ball: w.head<3>() = R * Eigen::Map<const Eigen::Vector3d>(tau); break;
+        case Motion::Pin: w.head<3>() = R.col(2) * tau[0]; break;
+        case Motion::Weld: break;
     }
     return w;
 }
 
 // udot from the relative acceleration about the joint centre, a_beta - a_alpha - c = S udot, where S is
 // [R; 0] (ball), [z; 0] (pin) or [[R, 0], [0, R]] (free).
-void extractJointAcceleration(const Joint& joint, const Eigen::Matrix3d& R, const SpatialVector& relative,
-                              double* udot) {
-    switch (joint.type) {
-        case JointType::Free:
+void extractJointAcceleration(Motion motion, const Eigen::Matrix3d& R, const SpatialVector& relative, double* udot) {
+    switch (motion) {
+        case Motion::Free:
             Eigen::Map<Eigen::Vector3d>{udot} = R.transpose() * relative.head<3>();
             Eigen::Map<Eigen::Vector3d>{udot + 3} = R.transpose() * relative.tail<3>();
             break;
-        case JointType::Ball: Eigen::Map<Eigen::Vector3d>{udot} = R.transpose() * relative.head<3>(); break;
-        case JointType::Pin: udot[0] = R.col(2).dot(relative.head<3>()); break;
-        case JointType::Weld: break;
+        case Motion::Ball: Eigen::Map<Eigen::Vector3d>{udot} = R.transpose() * relative.head<3>(); break;
+        case Motion::Pin: udot[0] = R.col(2).dot(relative.head<3>()); break;
+        case Motion::Weld: break;
+    }
+}
+
+// target += M(d)^T I M(d): an articulated inertia I about point r, taken about point o = r - d and added
+// (RBDA eq. 2.66 with X = M(d), the motion transform from o to r; M(d) = [[1, 0], [-d x, 1]]). With I =
+// [[A, B], [B^T, C]]: B' = B + [d]x C and A' = A + [d]x B^T - B [d]x - [d]x C [d]x.
+void addShiftedInertia(Matrix6d& target, const Matrix6d& I, const Eigen::Vector3d& d) {
+    const Eigen::Matrix3d D = skew(d);
+    const Eigen::Matrix3d B = I.topRightCorner<3, 3>();
+    const Eigen::Matrix3d DC = D * I.bottomRightCorner<3, 3>();
+    const Eigen::Matrix3d Bshifted = B + DC;
+    // [d]x B^T - B [d]x - [d]x C [d]x as N + N^T, exactly symmetric.
+    const Eigen::Matrix3d N = D * B.transpose() - 0.5 * DC * D;
+    target.topLeftCorner<3, 3>() += I.topLeftCorner<3, 3>() + N + N.transpose();
+    target.topRightCorner<3, 3>() += Bshifted;
+    target.bottomLeftCorner<3, 3>() += Bshifted.transpose();
+    target.bottomRightCorner<3, 3>() += I.bottomRightCorner<3, 3>();
+}
+
+// The same for I = [[0, 0], [0, K]], what a ball joint passes on: [[-[d]x K [d]x, [d]x K], [-K [d]x, K]].
+void addShiftedTranslationalInertia(Matrix6d& target, const Eigen::Matrix3d& K, const Eigen::Vector3d& d) {
+    const Eigen::Matrix3d D = skew(d);
+    const Eigen::Matrix3d DK = D * K;
+    const Eigen::Matrix3d N = 0.5 * DK * D;
+    target.topLeftCorner<3, 3>() -= N + N.transpose();
+    target.topRightCorner<3, 3>() += DK;
+    target.bottomLeftCorner<3, 3>() += DK.transpose();
+    target.bottomRightCorner<3, 3>() += K;
+}
+
+// The inverse of a symmetric positive definite spatial inertia [[A, B], [B^T, C]] by 3 x 3 blocks: with
+// the Schur complement S = A - B C^-1 B^T, I^-1 = [[S^-1, -S^-1 B C^-1], [., C^-1 + C^-1 B^T S^-1 B C^-1]].
+Matrix6d invertInertia(const Matrix6d& I) {
+    const Eigen::Matrix3d Cinv = I.bottomRightCorner<3, 3>().inverse();
+    const Eigen::Matrix3d BCinv = I.topRightCorner<3, 3>() * Cinv;
+    const Eigen::Matrix3d Sinv = (I.topLeftCorner<3, 3>() - BCinv * I.topRightCorner<3, 3>().transpose()).inverse();
+    Matrix6d G;
+    G.topLeftCorner<3, 3>() = Sinv;
+    G.topRightCorner<3, 3>() = -Sinv * BCinv;
+    G.bottomLeftCorner<3, 3>() = G.topRightCorner<3, 3>().transpose();
+    G.bottomRightCorner<3, 3>() = Cinv - BCinv.transpose() * G.topRightCorner<3, 3>();
+    return G;
+}
+
+// Products with a constraint-force basis T (6 x K): T^T W T, P T and T E T^T. K = 3 is always the ball's
+// T = [0; 1] (ball joints and loops), which only picks rows and columns.
+template <int K>
+Eigen::Matrix<double, K, K> projectOnBasis(const Eigen::Matrix<double, 6, K>& T, const Matrix6d& W) {
+    if constexpr (K == 3) return W.bottomRightCorner<3, 3>();
+    else return T.transpose() * W * T;
+}
+
+template <int K>
+Eigen::Matrix<double, 6, K> timesBasis(const Matrix6d& P, const Eigen::Matrix<double, 6, K>& T) {
+    if constexpr (K == 3) return P.rightCols<3>();
+    else return P * T;
+}
+
+template <int K>
+Matrix6d expandFromBasis(const Eigen::Matrix<double, 6, K>& T, const Eigen::Matrix<double, K, K>& E) {
+    if constexpr (K == 3) {
+        Matrix6d Y = Matrix6d::Zero();
+        Y.bottomRightCorner<3, 3>() = E;
+        return Y;
+    } else {
+        return T * E * T.transpose();
     }
 }
 
@@ -47,7 +114,7 @@ void extractJointAcceleration(const Joint& joint, const Eigen::Matrix3d& R, cons
 // moves freely.
 template <int K>
 Eigen::Matrix<double, K, K> calcJointCompliance(const Eigen::Matrix<double, 6, K>& T, const Matrix6d& W) {
-    const Eigen::Matrix<double, K, K> D = T.transpose() * W * T;
+    const Eigen::Matrix<double, K, K> D = projectOnBasis<K>(T, W);
     if constexpr (K <= 4) return D.inverse();  // Eigen's closed form, well conditioned for an SPD D this small
     else return D.llt().solve(Eigen::Matrix<double, K, K>::Identity());
 }
@@ -60,7 +127,7 @@ template <int K>
 Eigen::Matrix<double, K, K> calcClosureCompliance(const Eigen::Matrix<double, 6, K>& T, const Matrix6d& W,
                                                   int& redundant, double& conditioning) {
     using Square = Eigen::Matrix<double, K, K>;
-    const Square D = T.transpose() * W * T;
+    const Square D = projectOnBasis<K>(T, W);
     const Eigen::SelfAdjointEigenSolver<Square> eigen(D);
     const auto& values = eigen.eigenvalues();
     // Roundoff in the subassembly's Phi (differences of inverse inertias) leaves a redundant direction at
@@ -105,11 +172,11 @@ struct Evaluation {
     const std::vector<SpatialVector>& linkForces;
     ForwardDynamicsData& fd;
 
-    // A body's velocity or acceleration (about its centre of mass) taken about point p; zero for ground.
+    // A body's velocity or acceleration (about its reference point) taken about point p; zero for ground.
     SpatialVector motionAt(const std::vector<SpatialVector>& ofBody, int body, const Eigen::Vector3d& p) const {
         if (body == kGroundBody) return SpatialVector::Zero();
         const std::size_t bb = static_cast<std::size_t>(body);
-        return shiftMotion(ofBody[bb], p - fd.massCenter[bb]);
+        return shiftMotion(ofBody[bb], p - fd.jointPoint[bb]);
     }
     const Eigen::Vector3d& pointOfHandle(int handle) const { return fd.jointPoint[static_cast<std::size_t>(handle / 2)]; }
 
@@ -129,68 +196,38 @@ struct Evaluation {
         }
     }
 
-    // Inertia, velocity and bias force p = v x* I v - f_ext about the body's centre of mass c, where the
-    // spatial inertia is diag(Ic, m 1); then the leaf's handle equations, Phi_hk = M(r_h - c) I^-1
-    // M(r_k - c)^T and b_h = -M(r_h - c) I^-1 p (docs/closed-chain.md, "Leaves").
-    void prepareBody(int body) const {
-        const std::size_t bb = static_cast<std::size_t>(body);
-        const std::vector<int>& links = schedule.getLinksOfBody(body);
-        double mass = 0;
-        Eigen::Vector3d c = Eigen::Vector3d::Zero();
-        for (int link : links) {
-            const std::size_t l = static_cast<std::size_t>(link);
-            const Link& info = model.getLink(link);
-            mass += info.mass;
-            c += info.mass * (data.p_GB[l] + data.R_GB[l] * info.com_B);
-        }
-        c /= mass;
-        Eigen::Matrix3d Ic = Eigen::Matrix3d::Zero();
-        SpatialVector external = SpatialVector::Zero();
-        external.tail<3>() = mass * model.getGravity();
-        for (int link : links) {
-            const std::size_t l = static_cast<std::size_t>(link);
-            const Link& info = model.getLink(link);
-            const Eigen::Vector3d d = data.p_GB[l] + data.R_GB[l] * info.com_B - c;
-            Ic += data.R_GB[l] * info.inertia_Bcom * data.R_GB[l].transpose() +
-                  info.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
-            external += shiftForce(linkForces[l], c - data.p_GB[l]);
-        }
-        Matrix6d& Iinv = fd.inertiaInverse[bb];
-        Iinv.setZero();
-        Iinv.topLeftCorner<3, 3>() = Ic.inverse();
-        Iinv.bottomRightCorner<3, 3>() = Eigen::Matrix3d::Identity() / mass;
-        fd.massCenter[bb] = c;
-        const std::size_t first = static_cast<std::size_t>(links.front());
+    // Rigid inertia, velocity and bias force p = v x* I v - f_ext of body b about its reference point o
+    // (its inboard joint's centre), where the central inertia is diag(Ic, m 1) about the centre of mass c;
+    // they start the body's articulated inertia and bias (docs/closed-chain.md, "Bodies").
+    void prepareBody(int b) const {
+        const std::size_t bb = static_cast<std::size_t>(b);
+        const AssemblyBody& body = schedule.getBody(b);
+        const std::size_t first = static_cast<std::size_t>(body.links.front());
+        const Eigen::Matrix3d& R = data.R_GB[first];
+        const Eigen::Vector3d c = data.p_GB[first] + R * body.com;
+        const Eigen::Matrix3d Ic = R * body.inertia * R.transpose();
+        const Eigen::Vector3d& o = fd.jointPoint[bb];
         const Eigen::Vector3d& w = data.w_GB[first];
-        SpatialVector v;
-        v << w, data.v_GB[first] + w.cross(c - data.p_GB[first]);
-        fd.velocity[bb] = v;
-        SpatialVector momentum;
-        momentum << Ic * w, mass * v.tail<3>();
-        fd.bias[bb] = crossForce(v, momentum) - external;
-
-        // With A = Ic^-1 and S_h = skew(r_h - c), M(d_h) I^-1 M(d_k)^T is
-        // [[A, A S_k], [(A S_h)^T, S_h^T A S_k + 1/m]]: one 3x3 product per pair of handles.
-        const std::vector<int>& handles = schedule.getHandles(body);
-        const std::size_t h = handles.size();
-        const Eigen::Matrix3d A = Iinv.topLeftCorner<3, 3>();
-        const SpatialVector a0 = -Iinv * fd.bias[bb];
-        for (std::size_t k = 0; k < h; ++k) {
-            const Eigen::Vector3d dk = pointOfHandle(handles[k]) - c;
-            const Eigen::Matrix3d Sk = skew(dk);
-            const Eigen::Matrix3d ASk = A * Sk;
-            for (std::size_t i = 0; i <= k; ++i) {
-                const Eigen::Matrix3d Si = skew(pointOfHandle(handles[i]) - c);
-                Matrix6d& block = fd.Phi[bb][i * h + k];
-                block.topLeftCorner<3, 3>() = A;
-                block.topRightCorner<3, 3>() = ASk;
-                block.bottomLeftCorner<3, 3>() = (A * Si).transpose();
-                block.bottomRightCorner<3, 3>() = Si.transpose() * ASk;
-                block.bottomRightCorner<3, 3>().diagonal().array() += 1 / mass;
-                if (i != k) fd.Phi[bb][k * h + i] = block.transpose();
-            }
-            fd.b[bb][k] = shiftMotion(a0, dk);
+        const Eigen::Vector3d vc = data.v_GB[first] + w.cross(c - data.p_GB[first]);
+        SpatialVector biasAtCom;
+        biasAtCom.head<3>() = w.cross(Ic * w);
+        biasAtCom.tail<3>() = body.mass * (w.cross(vc) - model.getGravity());
+        SpatialVector bias = shiftForce(biasAtCom, o - c);
+        for (int link : body.links) {
+            const std::size_t l = static_cast<std::size_t>(link);
+            bias -= shiftForce(linkForces[l], o - data.p_GB[l]);
         }
+        fd.articulatedBias[bb] = bias;
+        fd.velocity[bb].head<3>() = w;
+        fd.velocity[bb].tail<3>() = vc + w.cross(o - c);
+        // RBDA eq. 2.63 with the centre of mass at e = c - o.
+        const Eigen::Matrix3d E = skew(c - o);
+        Matrix6d& I = fd.articulatedInertia[bb];
+        const Eigen::Matrix3d rotational = Ic - body.mass * E * E;
+        I.topLeftCorner<3, 3>() = 0.5 * (rotational + rotational.transpose());  // exactly symmetric, see absorb()
+        I.topRightCorner<3, 3>() = body.mass * E;
+        I.bottomLeftCorner<3, 3>() = -body.mass * E;
+        I.bottomRightCorner<3, 3>() = body.mass * Eigen::Matrix3d::Identity();
     }
 
     // Relative motion S u = v_beta - v_alpha about the joint point and its bias c = dS/dt u = v_alpha x (S u),
@@ -202,8 +239,160 @@ struct Evaluation {
         const SpatialVector vAlpha = motionAt(fd.velocity, aj.alphaBody, p);
         const SpatialVector relative = motionAt(fd.velocity, aj.betaBody, p) - vAlpha;
         fd.jointBias[j] = crossMotion(vAlpha, relative);
-        if (aj.kind == AssemblyJoint::Kind::Tree && model.getJoint(aj.index).type == JointType::Free)
+        if (aj.motion == Motion::Free)
             fd.jointBias[j].tail<3>() += relative.tail<3>().cross(relative.head<3>());
+    }
+
+    // Absorb (docs/closed-chain.md, "Absorb"): the child body's articulated inertia I and bias p about the
+    // joint centre pass through the joint to the parent as Ia = I - U D^-1 U^T and pa = p + Ia c +
+    // U D^-1 (tau - S^T p), with U = I S and D = S^T U (RBDA eqs. 7.37-7.40, Table 7.1), taken about the
+    // parent's point. Ground takes nothing.
+    void absorb(std::size_t j) const {
+        const AssemblyJoint& aj = schedule.getJoints()[j];
+        const std::size_t child = static_cast<std::size_t>(aj.betaBody);
+        const Matrix6d& I = fd.articulatedInertia[child];
+        const SpatialVector& p = fd.articulatedBias[child];
+        const Eigen::Matrix3d& R = data.R_GF[static_cast<std::size_t>(aj.index)];
+        const double* tauJ = jointTau(aj);
+        const SpatialVector& c = fd.jointBias[j];
+        SpatialVector pa = calcJointForce(aj.motion, R, tauJ);
+        // The parent's inertia, or none for ground; d: from the parent's point to the joint centre.
+        const std::size_t parent = static_cast<std::size_t>(aj.alphaBody == kGroundBody ? 0 : aj.alphaBody);
+        Matrix6d* parentInertia = aj.alphaBody == kGroundBody ? nullptr : &fd.articulatedInertia[parent];
+        const Eigen::Vector3d d = parentInertia ? Eigen::Vector3d(fd.jointPoint[j] - fd.jointPoint[parent])
+                                                : Eigen::Vector3d::Zero();
+        switch (aj.motion) {
+            case Motion::Ball: {
+                // S = [R; 0]: U D^-1 U^T = I[:, 0:3] A^-1 I[0:3, :], so Ia = [[0, 0], [0, K]] with K the Schur
+                // complement C - B^T A^-1 B, and pa = [R tau; ...]: 3 x 3 blocks only.
+                const Eigen::Matrix3d B = I.topRightCorner<3, 3>();
+                const Eigen::Matrix3d& Ainv = fd.rotationalInverse[j] = I.topLeftCorner<3, 3>().inverse();
+                const Eigen::Matrix3d BtAinv = B.transpose() * Ainv;
+                // Kept exactly symmetric: the roundoff asymmetry of B^T A^-1 B grows geometrically along
+                // chains of ball joints (1e-8 relative after 40 links, NaN after 127).
+                const Eigen::Matrix3d BtAinvB = BtAinv * B;
+                const Eigen::Matrix3d K = I.bottomRightCorner<3, 3>() - 0.5 * (BtAinvB + BtAinvB.transpose());
+                pa.tail<3>() = p.tail<3>() + K * c.tail<3>() + BtAinv * (pa.head<3>() - p.head<3>());
+                if (parentInertia) addShiftedTranslationalInertia(*parentInertia, K, d);
+                break;
+            }
+            case Motion::Pin: {
+                const Eigen::Vector3d z = R.col(2);
+                const SpatialVector U = I.leftCols<3>() * z;
+                const double D = z.dot(U.head<3>());
+                const Matrix6d Ia = I - U * U.transpose() / D;
+                pa = p + Ia * c + U * ((tauJ[0] - z.dot(p.head<3>())) / D);
+                if (parentInertia) addShiftedInertia(*parentInertia, Ia, d);
+                break;
+            }
+            case Motion::Free: break;  // S invertible: Ia = 0 and pa = the joint force
+            case Motion::Weld: break;  // (never: welded links share a body)
+        }
+        if (parentInertia) fd.articulatedBias[parent] += shiftForce(pa, -d);
+    }
+
+    // The child's acceleration from its parent's, a = a_parent + c + S udot with udot = D^-1 (tau - S^T p -
+    // U^T (a_parent + c)) (RBDA Table 7.1, third pass), and the joint's udot.
+    void absorbAcceleration(std::size_t j) const {
+        const AssemblyJoint& aj = schedule.getJoints()[j];
+        const std::size_t child = static_cast<std::size_t>(aj.betaBody);
+        const Matrix6d& I = fd.articulatedInertia[child];
+        const SpatialVector& p = fd.articulatedBias[child];
+        const Eigen::Matrix3d& R = data.R_GF[static_cast<std::size_t>(aj.index)];
+        const double* tauJ = jointTau(aj);
+        const SpatialVector base = motionAt(fd.bodyAcceleration, aj.alphaBody, fd.jointPoint[j]) + fd.jointBias[j];
+        SpatialVector a = base;
+        switch (aj.motion) {
+            case Motion::Ball:
+                // The moment row of I a + p = [R tau; f] gives the angular part; the linear part is the parent's.
+                a.head<3>() = fd.rotationalInverse[j] * (R * Eigen::Map<const Eigen::Vector3d>(tauJ) - p.head<3>() -
+                                                         I.topRightCorner<3, 3>() * a.tail<3>());
+                break;
+            case Motion::Pin: {
+                const Eigen::Vector3d z = R.col(2);
+                const SpatialVector U = I.leftCols<3>() * z;
+                a.head<3>() += z * ((tauJ[0] - z.dot(p.head<3>()) - U.dot(a)) / z.dot(U.head<3>()));
+                break;
+            }
+            case Motion::Free: a = I.llt().solve(calcJointForce(aj.motion, R, tauJ) - p); break;
+            case Motion::Weld: break;
+        }
+        fd.bodyAcceleration[child] = a;
+        extractJointAcceleration(aj.motion, R, a - base, fd.udot.data() + model.getJoint(aj.index).uStart);
+    }
+
+    // AbsorbSubassembly: the child's subassembly has one handle, the joint's beta, with a_beta = W f + b.
+    // Through the joint the force on it is f = w + T lambda with T^T (a_beta - a_parent - c) = 0, so
+    // f = Y a_parent + g with Y and g as in a join (docs/closed-chain.md): in ABA's terms Ia = Y and pa = g.
+    void absorbSubassembly(std::size_t o) const {
+        const AssemblyOperation& op = schedule.getOperations()[o];
+        const std::size_t j = static_cast<std::size_t>(op.joint);
+        const AssemblyJoint& aj = schedule.getJoints()[j];
+        const Matrix6d& W = fd.Phi[static_cast<std::size_t>(op.first)][0];
+        const SpatialVector& b = fd.b[static_cast<std::size_t>(op.first)][0];
+        const Eigen::Matrix3d& R = data.R_GF[static_cast<std::size_t>(aj.index)];
+        const SpatialVector force = calcJointForce(aj.motion, R, jointTau(aj));
+        switch (aj.motion) {
+            case Motion::Ball: setJointTerms<3>(o, ballBasis(), calcJointCompliance<3>(ballBasis(), W), W, force, b); break;
+            case Motion::Pin: {
+                const Eigen::Matrix<double, 6, 5> T = pinBasis(R);
+                setJointTerms<5>(o, T, calcJointCompliance<5>(T, W), W, force, b);
+                break;
+            }
+            case Motion::Free:
+                setJointTerms<0>(o, Eigen::Matrix<double, 6, 0>(), Eigen::Matrix<double, 0, 0>(), W, force, b);
+                break;
+            case Motion::Weld: break;
+        }
+        if (aj.alphaBody == kGroundBody) return;
+        const std::size_t parent = static_cast<std::size_t>(aj.alphaBody);
+        const Eigen::Vector3d d = fd.jointPoint[j] - fd.jointPoint[parent];
+        // Exactly symmetric, as every articulated inertia is kept (roundoff asymmetry grows along chains).
+        addShiftedInertia(fd.articulatedInertia[parent], 0.5 * (fd.Y[o] + fd.Y[o].transpose()), d);
+        fd.articulatedBias[parent] += shiftForce(fd.g[o], -d);
+    }
+
+    // The force through the joint once the parent's acceleration is known: f = Y a_parent + g.
+    void absorbSubassemblyForce(std::size_t o) const {
+        const std::size_t j = static_cast<std::size_t>(schedule.getOperations()[o].joint);
+        const AssemblyJoint& aj = schedule.getJoints()[j];
+        const SpatialVector f = fd.Y[o] * motionAt(fd.bodyAcceleration, aj.alphaBody, fd.jointPoint[j]) + fd.g[o];
+        fd.handleForce[2 * j + 1] = f;
+        fd.handleForce[2 * j] = -f;
+    }
+
+    const double* jointTau(const AssemblyJoint& aj) const { return tau.data() + model.getJoint(aj.index).uStart; }
+
+    // A skeleton body's leaf (docs/closed-chain.md, "Leaves"): with G = I^-1 about the body's point o,
+    // Phi_hk = M(r_h - o) G M(r_k - o)^T and b_h = -M(r_h - o) G p. With M(r_h - o) G = [[G11, G12], [P_h,
+    // Q_h]], P_h = G21 - [d_h]x G11 and Q_h = G22 - [d_h]x G12: Phi_hk = [[G11, P_k^T], [P_h, P_h [d_k]x + Q_h]].
+    void leaf(std::size_t o) const {
+        const int body = schedule.getOperations()[o].first;
+        const std::size_t bb = static_cast<std::size_t>(body);
+        const Matrix6d& G = fd.inverseInertia[bb] = invertInertia(fd.articulatedInertia[bb]);
+        const SpatialVector a0 = -G * fd.articulatedBias[bb];
+        const std::vector<int>& handles = schedule.getHandles(body);
+        const std::size_t h = handles.size();
+        std::vector<Matrix6d>& PQ = fd.scratchU[o];
+        for (std::size_t k = 0; k < h; ++k) {
+            const Eigen::Vector3d d = pointOfHandle(handles[k]) - fd.jointPoint[bb];
+            const Eigen::Matrix3d D = skew(d);
+            PQ[k].bottomLeftCorner<3, 3>() = G.bottomLeftCorner<3, 3>() - D * G.topLeftCorner<3, 3>();
+            PQ[k].bottomRightCorner<3, 3>() = G.bottomRightCorner<3, 3>() - D * G.topRightCorner<3, 3>();
+            PQ[k].topLeftCorner<3, 3>() = D;  // [d_k]x, kept for the blocks below
+            fd.b[bb][k] = shiftMotion(a0, d);
+        }
+        for (std::size_t k = 0; k < h; ++k) {
+            for (std::size_t i = 0; i <= k; ++i) {
+                Matrix6d& block = fd.Phi[bb][i * h + k];
+                block.topLeftCorner<3, 3>() = G.topLeftCorner<3, 3>();
+                block.topRightCorner<3, 3>() = PQ[k].bottomLeftCorner<3, 3>().transpose();
+                block.bottomLeftCorner<3, 3>() = PQ[i].bottomLeftCorner<3, 3>();
+                block.bottomRightCorner<3, 3>() =
+                    PQ[i].bottomLeftCorner<3, 3>() * PQ[k].topLeftCorner<3, 3>() + PQ[i].bottomRightCorner<3, 3>();
+                if (i != k) fd.Phi[bb][k * h + i] = block.transpose();
+            }
+        }
     }
 
     // Join (docs/closed-chain.md, "Join"): subassemblies A and B through joint J into C. Y = T E T^T has
@@ -211,14 +400,13 @@ struct Evaluation {
     // (Phi_ha T) E (Phi_ka T)^T: for a ball joint T selects the force rows and the update costs half.
     void join(std::size_t o) const {
         const AssemblyJoint& aj = schedule.getJoints()[static_cast<std::size_t>(schedule.getOperations()[o].joint)];
-        const Joint& joint = model.getJoint(aj.index);
         const Eigen::Matrix3d& R = data.R_GF[static_cast<std::size_t>(aj.index)];
-        const SpatialVector force = calcJointForce(joint, R, tau.data() + joint.uStart);
-        switch (joint.type) {
-            case JointType::Ball: joinThrough<3>(o, ballBasis(), force); break;
-            case JointType::Pin: joinThrough<5>(o, pinBasis(R), force); break;
-            case JointType::Free: joinThrough<0>(o, Eigen::Matrix<double, 6, 0>(), force); break;
-            case JointType::Weld: break;  // welded links share a body: never an assembly joint
+        const SpatialVector force = calcJointForce(aj.motion, R, jointTau(aj));
+        switch (aj.motion) {
+            case Motion::Ball: joinThrough<3>(o, ballBasis(), force); break;
+            case Motion::Pin: joinThrough<5>(o, pinBasis(R), force); break;
+            case Motion::Free: joinThrough<0>(o, Eigen::Matrix<double, 6, 0>(), force); break;
+            case Motion::Weld: break;  // welded links share a body: never a tree joint
         }
     }
 
@@ -248,7 +436,7 @@ struct Evaluation {
             const bool fromA = c < hA - 1;
             const int h = fromA ? (c < ia ? c : c + 1) : (c - (hA - 1) < ib ? c - (hA - 1) : c - (hA - 1) + 1);
             const Matrix6d& P = fromA ? A(h, ia) : B(h, ib);
-            U[static_cast<std::size_t>(c)].leftCols<K>() = P * T;
+            U[static_cast<std::size_t>(c)].leftCols<K>() = timesBasis<K>(P, T);
             UE[static_cast<std::size_t>(c)].leftCols<K>() = U[static_cast<std::size_t>(c)].leftCols<K>() * E;
             bC[static_cast<std::size_t>(c)] = fromA ? SpatialVector(bA[static_cast<std::size_t>(h)] - P * g)
                                                     : SpatialVector(bB[static_cast<std::size_t>(h)] + P * g);
@@ -302,7 +490,7 @@ struct Evaluation {
         for (int c = 0; c < hC; ++c) {
             const int h = handleAt(c);
             const Matrix6d delta = A(h, ib) - A(h, ia);
-            U[static_cast<std::size_t>(c)].leftCols<K>() = delta * T;
+            U[static_cast<std::size_t>(c)].leftCols<K>() = timesBasis<K>(delta, T);
             UE[static_cast<std::size_t>(c)].leftCols<K>() = U[static_cast<std::size_t>(c)].leftCols<K>() * E;
             bC[static_cast<std::size_t>(c)] = bA[static_cast<std::size_t>(h)] + delta * g;
         }
@@ -323,7 +511,7 @@ struct Evaluation {
         const SpatialVector& c = fd.jointBias[static_cast<std::size_t>(schedule.getOperations()[o].joint)];
         Matrix6d& Y = fd.Y[o];
         if constexpr (K == 0) Y.setZero();
-        else Y = T * E * T.transpose();
+        else Y = expandFromBasis<K>(T, E);
         fd.g[o] = force - Y * (W * force + bDifference - c);
     }
 
@@ -338,7 +526,7 @@ struct Evaluation {
             return fd.handleForce[static_cast<std::size_t>(handles[static_cast<std::size_t>(k)])];
         };
         SpatialVector sum = SpatialVector::Zero();
-        if (!op.isClose) {
+        if (op.kind == AssemblyOperation::Kind::Join) {
             const std::vector<int>& handlesB = schedule.getHandles(op.second);
             const std::vector<Matrix6d>& PB = fd.Phi[static_cast<std::size_t>(op.second)];
             const int hB = static_cast<int>(handlesB.size());
@@ -357,26 +545,28 @@ struct Evaluation {
         fd.handleForce[static_cast<std::size_t>(2 * op.joint)] = -f;
     }
 
-    // a = I^-1 (sum of handle forces - p), about the centre of mass.
-    void finishBody(int body) const {
+    // A skeleton body's acceleration, a = I^-1 (sum of handle forces - p), about its point.
+    void finishLeaf(std::size_t o) const {
+        const int body = schedule.getOperations()[o].first;
         const std::size_t bb = static_cast<std::size_t>(body);
-        SpatialVector total = -fd.bias[bb];
+        SpatialVector total = -fd.articulatedBias[bb];
         for (int h : schedule.getHandles(body))
-            total += shiftForce(fd.handleForce[static_cast<std::size_t>(h)], fd.massCenter[bb] - pointOfHandle(h));
-        fd.bodyAcceleration[bb] = fd.inertiaInverse[bb] * total;
+            total += shiftForce(fd.handleForce[static_cast<std::size_t>(h)], fd.jointPoint[bb] - pointOfHandle(h));
+        fd.bodyAcceleration[bb] = fd.inverseInertia[bb] * total;
     }
 
-    // udot from a_beta - a_alpha - c = S udot about the joint point; closures report their force on beta.
+    // udot from a_beta - a_alpha - c = S udot about the joint point (absorbed joints have theirs already);
+    // closures report their force on beta.
     void finishJoint(std::size_t j) const {
         const AssemblyJoint& aj = schedule.getJoints()[j];
         switch (aj.kind) {
             case AssemblyJoint::Kind::Tree: {
-                const Joint& joint = model.getJoint(aj.index);
+                if (schedule.getTreeJointOperation(static_cast<int>(j)) == AssemblyOperation::Kind::Absorb) break;
                 const Eigen::Vector3d& p = fd.jointPoint[j];
-                extractJointAcceleration(joint, data.R_GF[static_cast<std::size_t>(aj.index)],
+                extractJointAcceleration(aj.motion, data.R_GF[static_cast<std::size_t>(aj.index)],
                                          motionAt(fd.bodyAcceleration, aj.betaBody, p) -
                                              motionAt(fd.bodyAcceleration, aj.alphaBody, p) - fd.jointBias[j],
-                                         fd.udot.data() + joint.uStart);
+                                         fd.udot.data() + model.getJoint(aj.index).uStart);
                 break;
             }
             case AssemblyJoint::Kind::Loop:
@@ -391,13 +581,15 @@ struct Evaluation {
 
 ForwardDynamicsData::ForwardDynamicsData(const Model& model, const AssemblySchedule& schedule) {
     const std::size_t bodies = static_cast<std::size_t>(schedule.getNumBodies());
+    const std::size_t joints = schedule.getJoints().size();
     const std::size_t operations = schedule.getOperations().size();
-    massCenter.assign(bodies, Eigen::Vector3d::Zero());
-    inertiaInverse.assign(bodies, Matrix6d::Zero());
+    jointPoint.assign(joints, Eigen::Vector3d::Zero());
+    jointBias.assign(joints, SpatialVector::Zero());
     velocity.assign(bodies, SpatialVector::Zero());
-    bias.assign(bodies, SpatialVector::Zero());
-    jointPoint.assign(schedule.getJoints().size(), Eigen::Vector3d::Zero());
-    jointBias.assign(schedule.getJoints().size(), SpatialVector::Zero());
+    articulatedInertia.assign(bodies, Matrix6d::Zero());
+    articulatedBias.assign(bodies, SpatialVector::Zero());
+    inverseInertia.assign(bodies, Matrix6d::Zero());
+    rotationalInverse.assign(joints, Eigen::Matrix3d::Zero());
     Phi.resize(static_cast<std::size_t>(schedule.getNumSubassemblies()));
     b.resize(Phi.size());
     for (std::size_t s = 0; s < Phi.size(); ++s) {
@@ -410,13 +602,15 @@ ForwardDynamicsData::ForwardDynamicsData(const Model& model, const AssemblySched
     scratchU.resize(operations);
     scratchUE.resize(operations);
     for (std::size_t o = 0; o < operations; ++o) {
-        const std::size_t h = schedule.getHandles(schedule.getOperations()[o].result).size();
+        const AssemblyOperation& op = schedule.getOperations()[o];
+        const std::size_t h = op.result < 0 ? 0 : schedule.getHandles(op.result).size();
         scratchU[o].assign(h, Matrix6d::Zero());
-        scratchUE[o].assign(h, Matrix6d::Zero());
+        if (op.kind == AssemblyOperation::Kind::Join || op.kind == AssemblyOperation::Kind::Close)
+            scratchUE[o].assign(h, Matrix6d::Zero());
     }
     operationRedundancy.assign(operations, 0);
     operationConditioning.assign(operations, 1.0);
-    handleForce.assign(2 * schedule.getJoints().size(), SpatialVector::Zero());
+    handleForce.assign(2 * joints, SpatialVector::Zero());
     udot = Eigen::VectorXd::Zero(model.getNumU());
     bodyAcceleration.assign(bodies, SpatialVector::Zero());
     loopForce.assign(static_cast<std::size_t>(model.getNumLoops()), Eigen::Vector3d::Zero());
@@ -432,19 +626,34 @@ void runStages(const Evaluation& e, ForEach&& forEach) {
     const int numJoints = static_cast<int>(schedule.getJoints().size());
     const std::vector<int>& levels = schedule.getLevelStarts();
     const int numLevels = schedule.getNumLevels();
+    using Kind = AssemblyOperation::Kind;
     forEach(0, numJoints, [&](int j) { e.placeJoint(static_cast<std::size_t>(j)); });
     forEach(0, numBodies, [&](int body) { e.prepareBody(body); });
     forEach(0, numJoints, [&](int j) { e.prepareJoint(static_cast<std::size_t>(j)); });
     for (int level = 0; level < numLevels; ++level)
         forEach(levels[static_cast<std::size_t>(level)], levels[static_cast<std::size_t>(level) + 1], [&](int o) {
             const std::size_t op = static_cast<std::size_t>(o);
-            if (schedule.getOperations()[op].isClose) e.close(op);
-            else e.join(op);
+            const AssemblyOperation& operation = schedule.getOperations()[op];
+            switch (operation.kind) {
+                case Kind::Absorb: e.absorb(static_cast<std::size_t>(operation.joint)); break;
+                case Kind::AbsorbSubassembly: e.absorbSubassembly(op); break;
+                case Kind::Leaf: e.leaf(op); break;
+                case Kind::Join: e.join(op); break;
+                case Kind::Close: e.close(op); break;
+            }
         });
     for (int level = numLevels - 1; level >= 0; --level)
-        forEach(levels[static_cast<std::size_t>(level)], levels[static_cast<std::size_t>(level) + 1],
-                [&](int o) { e.disassemble(static_cast<std::size_t>(o)); });
-    forEach(0, numBodies, [&](int body) { e.finishBody(body); });
+        forEach(levels[static_cast<std::size_t>(level)], levels[static_cast<std::size_t>(level) + 1], [&](int o) {
+            const std::size_t op = static_cast<std::size_t>(o);
+            const AssemblyOperation& operation = schedule.getOperations()[op];
+            switch (operation.kind) {
+                case Kind::Absorb: e.absorbAcceleration(static_cast<std::size_t>(operation.joint)); break;
+                case Kind::AbsorbSubassembly: e.absorbSubassemblyForce(op); break;
+                case Kind::Leaf: e.finishLeaf(op); break;
+                case Kind::Join:
+                case Kind::Close: e.disassemble(op); break;
+            }
+        });
     forEach(0, numJoints, [&](int j) { e.finishJoint(static_cast<std::size_t>(j)); });
 }
 
@@ -467,6 +676,11 @@ void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, c
 #pragma omp for schedule(dynamic, 1)
             for (int i = begin; i < end; ++i) f(i);
         });
+    }
+    // Virtual links take no part (their quasi-static treatment drives them).
+    for (int link : schedule.getVirtualLinks()) {
+        const Joint& joint = model.getJoint(link);
+        fd.udot.segment(joint.uStart, joint.nu).setZero();
     }
     fd.redundantConstraints = 0;
     fd.loopConditioning = 1;

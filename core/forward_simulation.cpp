@@ -11,6 +11,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/core/forward_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
+#include "sinew/core/virtual_link_equilibrium.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
 
@@ -31,6 +32,8 @@ std::string formatTime(double t) {
 }
 
 // The state y = [q; u] (nq + nu), its derivative, and every buffer the integration needs, sized once.
+// A virtual link's entries of y are not integrated (their derivatives are zero): they hold its equilibrium
+// pose and quasi-static twist at the last accepted state, the warm start of every evaluation from there.
 class SinewSimulator {
 public:
     SinewSimulator(const Model& model, int hangLink)
@@ -40,6 +43,7 @@ public:
           schedule_(model, AssemblySchedule::Kind::Automatic, hangLink),
           data_(model),
           fd_(model, schedule_),
+          equilibrium_(model),
           q_(nq_),
           u_(nu_),
           tau_(Eigen::VectorXd::Zero(nu_)),
@@ -53,6 +57,7 @@ public:
     }
 
     Data& updData() { return data_; }
+    const VirtualLinkEquilibriumStatus& getVirtualLinkStatus() const { return equilibrium_.status; }
     const Eigen::VectorXd& getTensions() const { return tensions_; }
 
     // ydot = [qdot; udot] at (t, y): the forward dynamics with zero generalized forces, gravity and the wire
@@ -61,8 +66,13 @@ public:
         calcKinematicsAndTensions(t, y);
         calcWireLinkForces(model_, data_, tensions_);
         calcForwardDynamics(model_, schedule_, data_, tau_, data_.F_G, fd_);
-        for (const Joint& joint : model_.getJoints()) {
+        for (int i = 0; i < model_.getNumLinks(); ++i) {
+            const Joint& joint = model_.getJoint(i);
             const int qs = joint.qStart, us = joint.uStart;
+            if (model_.getLink(i).isVirtual) {  // solved, not integrated
+                ydot.segment<7>(qs).setZero();
+                continue;
+            }
             switch (joint.type) {
                 case JointType::Free:
                     ydot.segment<3>(qs + 4) = u_.segment<3>(us + 3);  // dp_FM/dt = v_FM, both in F
@@ -79,9 +89,10 @@ public:
                 }
                 case JointType::Pin: ydot[qs] = u_[us]; break;
                 case JointType::Weld: break;
+                case JointType::Custom: ydot.segment(qs, joint.nq) = u_.segment(us, joint.nu); break;
             }
         }
-        ydot.tail(nu_) = fd_.udot;
+        ydot.tail(nu_) = fd_.udot;  // 0 for the virtual links' joints
     }
 
     // Kinematics, wire paths, speeds and tensions at (t, y), into data_ and tensions_.
@@ -92,7 +103,15 @@ public:
         calcVelocityKinematics(model_, data_, u_);
         calcWirePaths(model_, data_);
         calcWireSpeeds(model_, data_);
+        calcVirtualLinkEquilibrium(model_, data_, t, equilibrium_);
         calcWireTensions(model_, data_, t, tensions_);
+    }
+
+    // Stores the virtual links' equilibrium at the state last evaluated, which must be y, in y: the warm
+    // start of the evaluations that follow, and what the frames report.
+    void storeVirtualLinks(Eigen::VectorXd& y) const {
+        if (equilibrium_.links.empty()) return;
+        getVirtualLinkCoordinates(model_, data_, equilibrium_, y.head(nq_), y.tail(nu_));
     }
 
     // Rescales every quaternion in y to unit length and its entries of ydot by the same factor (ydot is
@@ -118,6 +137,7 @@ public:
         y += (h / 6) * (ydot + 2 * k2 + 2 * k3 + k4);
         calcStateDerivative(t + h, y, ydot);
         normalizeQuaternions(y, ydot);
+        storeVirtualLinks(y);
     }
 
     // One Dormand-Prince 5(4) trial step of size h from (t, y) with ydot = f(t, y) (Hairer, Norsett and
@@ -193,13 +213,15 @@ public:
         y += dt * ydot;
         calcStateDerivative(tEnd, y, ydot);
         normalizeQuaternions(y, ydot);
+        storeVirtualLinks(y);
     }
 
-    // Accepts the last Dormand-Prince trial step: y, ydot advance to its end.
+    // Accepts the last Dormand-Prince trial step: y, ydot advance to its end (its last stage, evaluated there).
     void acceptDormandPrince(Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
         y = yNew_;
         ydot = k_[6];
         normalizeQuaternions(y, ydot);
+        storeVirtualLinks(y);
     }
 
     // RMS over i of e_i / (accuracy (1 + max(|a_i|, |b_i|))).
@@ -233,6 +255,7 @@ private:
     const AssemblySchedule schedule_;
     Data data_;
     ForwardDynamicsData fd_;
+    VirtualLinkEquilibriumData equilibrium_;
     Eigen::VectorXd q_, u_;       // the state being evaluated, split (nq, nu)
     Eigen::VectorXd tau_;         // zero generalized forces (nu)
     Eigen::VectorXd tensions_;    // N (numWires)
@@ -295,10 +318,6 @@ double calcConstraintViolation(const Model& model, Data& data, const Eigen::Vect
 
 SimulationSummary simulateForwardSinew(const Model& model, const ForwardSimulationOptions& options,
                                        const std::function<void(const SimulationFrame&)>& onFrame) {
-    for (const Link& link : model.getLinks())
-        if (link.isVirtual)
-            throw Error("model '" + model.getName() + "' has virtual link '" + link.name +
-                        "'; sinew's closed-chain forward dynamics does not treat massless 6-DOF links yet");
     if (!(options.duration > 0) || !(options.reportInterval > 0) || !(options.accuracy > 0))
         throw Error("simulation needs duration, report interval and accuracy > 0");
     if (options.integrator == Integrator::RungeKutta4Fixed && !(options.fixedStep > 0))
@@ -307,6 +326,7 @@ SimulationSummary simulateForwardSinew(const Model& model, const ForwardSimulati
     if (!options.hangBy.empty()) {
         hangLink = model.findLinkIndex(options.hangBy);
         if (hangLink < 0) throw Error("--hang-by: model '" + model.getName() + "' has no link '" + options.hangBy + "'");
+        if (model.getLink(hangLink).isVirtual) throw Error("--hang-by: '" + options.hangBy + "' is a virtual link");
     }
 
     SinewSimulator simulator(model, hangLink);
@@ -345,6 +365,7 @@ SimulationSummary simulateForwardSinew(const Model& model, const ForwardSimulati
             std::max(summary.maxConstraintViolation, calcConstraintViolation(model, data, frame.q, hangLink, p_GH));
         simulator.calcKinematicsAndTensions(t, y);
         frame.tensions = simulator.getTensions();
+        summary.maxVirtualLinkResidual = std::max(summary.maxVirtualLinkResidual, simulator.getVirtualLinkStatus().residual);
         // T = sum over links of 1/2 (m |v_com|^2 + w^T I_com w); V = -m g . p_com + wire energy.
         double kinetic = 0, potential = calcWirePotentialEnergy(model, data);
         for (int i = 0; i < model.getNumLinks(); ++i) {
@@ -371,6 +392,7 @@ SimulationSummary simulateForwardSinew(const Model& model, const ForwardSimulati
     const auto start = std::chrono::steady_clock::now();
     double t = 0;
     simulator.calcStateDerivative(t, y, ydot);
+    simulator.storeVirtualLinks(y);
     std::vector<char> tautStart(static_cast<std::size_t>(model.getNumWires()));  // pulling wires at (t, y)
     simulator.captureTautSet(tautStart);
     double h = options.integrator == Integrator::Adaptive

@@ -2,6 +2,8 @@
 
 #include <Eigen/Geometry>
 
+#include "sinew/core/custom_joint.hpp"
+
 namespace sinew {
 namespace {
 
@@ -12,6 +14,7 @@ Eigen::Quaterniond readQuaternion(const Eigen::VectorXd& q, int start) {
 }  // namespace
 
 void calcPositionKinematics(const Model& model, Data& data, const Eigen::VectorXd& q) {
+    data.q = q;  // for the wire points that depend on coordinates
     for (int i = 0; i < model.getNumLinks(); ++i) {
         const Joint& joint = model.getJoint(i);
         const std::size_t b = static_cast<std::size_t>(i);
@@ -31,6 +34,7 @@ void calcPositionKinematics(const Model& model, Data& data, const Eigen::VectorX
             case JointType::Ball: R_FM = readQuaternion(q, joint.qStart).toRotationMatrix(); break;
             case JointType::Pin: R_FM = Eigen::AngleAxisd(q[joint.qStart], Eigen::Vector3d::UnitZ()).toRotationMatrix(); break;
             case JointType::Weld: break;
+            case JointType::Custom: calcCustomJointTransform(joint, q.data() + joint.qStart, R_FM, p_FM, data.H_FM[b]); break;
         }
         data.R_GF[b] = R_GP * joint.R_PF;
         data.p_GM[b] = p_GP + R_GP * joint.p_PF + data.R_GF[b] * p_FM;
@@ -40,6 +44,7 @@ void calcPositionKinematics(const Model& model, Data& data, const Eigen::VectorX
 }
 
 void calcVelocityKinematics(const Model& model, Data& data, const Eigen::VectorXd& u) {
+    data.u = u;
     for (int i = 0; i < model.getNumLinks(); ++i) {
         const Joint& joint = model.getJoint(i);
         const std::size_t b = static_cast<std::size_t>(i);
@@ -59,16 +64,24 @@ void calcVelocityKinematics(const Model& model, Data& data, const Eigen::VectorX
             case JointType::Ball: w_GB += data.R_GF[b] * u.segment<3>(joint.uStart); break;
             case JointType::Pin: w_GB += data.R_GF[b].col(2) * u[joint.uStart]; break;
             case JointType::Weld: break;
+            case JointType::Custom: {
+                const SpatialVector V_FM = data.H_FM[b] * u.segment(joint.uStart, joint.nu);
+                w_GB += data.R_GF[b] * V_FM.head<3>();
+                v_GM += data.R_GF[b] * V_FM.tail<3>();
+                break;
+            }
         }
         data.w_GB[b] = w_GB;
         data.v_GB[b] = v_GM + w_GB.cross(data.p_GB[b] - data.p_GM[b]);
     }
 }
 
-void projectOntoJoint(const Joint& joint, const Eigen::Matrix3d& R_GF, const Eigen::Vector3d& p_GM,
-                      const Eigen::Vector3d& p_ref, const SpatialVector& F_G, double* tauJoint) {
+void projectOntoJoint(const Joint& joint, const Data& data, int link, const Eigen::Vector3d& p_ref,
+                      const SpatialVector& F_G, double* tauJoint) {
+    const std::size_t b = static_cast<std::size_t>(link);
+    const Eigen::Matrix3d& R_GF = data.R_GF[b];
     const Eigen::Vector3d f = F_G.tail<3>();
-    const Eigen::Vector3d momentAboutJoint = shiftForce(F_G, p_GM - p_ref).head<3>();
+    const Eigen::Vector3d momentAboutJoint = shiftForce(F_G, data.p_GM[b] - p_ref).head<3>();
     switch (joint.type) {
         case JointType::Free:
             Eigen::Map<Eigen::Vector3d>{tauJoint} = R_GF.transpose() * momentAboutJoint;
@@ -77,6 +90,12 @@ void projectOntoJoint(const Joint& joint, const Eigen::Matrix3d& R_GF, const Eig
         case JointType::Ball: Eigen::Map<Eigen::Vector3d>{tauJoint} = R_GF.transpose() * momentAboutJoint; break;
         case JointType::Pin: tauJoint[0] = R_GF.col(2).dot(momentAboutJoint); break;
         case JointType::Weld: break;
+        case JointType::Custom: {
+            SpatialVector F_F;
+            F_F << R_GF.transpose() * momentAboutJoint, R_GF.transpose() * f;
+            Eigen::Map<Eigen::VectorXd>(tauJoint, joint.nu) = data.H_FM[b].transpose() * F_F;
+            break;
+        }
     }
 }
 
@@ -84,7 +103,7 @@ void calcGeneralizedForcesFromLinkForces(const Model& model, Data& data, Eigen::
     for (int i = model.getNumLinks() - 1; i >= 0; --i) {
         const Joint& joint = model.getJoint(i);
         const std::size_t b = static_cast<std::size_t>(i);
-        projectOntoJoint(joint, data.R_GF[b], data.p_GM[b], data.p_GB[b], data.F_G[b], tau.data() + joint.uStart);
+        projectOntoJoint(joint, data, i, data.p_GB[b], data.F_G[b], tau.data() + joint.uStart);
         addToParent(model, data, i);
     }
 }
@@ -117,6 +136,7 @@ Eigen::VectorXd integrateCoordinates(const Model& model, const Eigen::VectorXd& 
             case JointType::Ball: rotate(joint.qStart, u.segment<3>(joint.uStart)); break;
             case JointType::Pin: result[joint.qStart] += dt * u[joint.uStart]; break;
             case JointType::Weld: break;
+            case JointType::Custom: result.segment(joint.qStart, joint.nq) += dt * u.segment(joint.uStart, joint.nu); break;
         }
     }
     return result;

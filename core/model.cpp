@@ -1,5 +1,7 @@
 #include "sinew/core/model.hpp"
 
+#include "sinew/core/error.hpp"
+
 namespace sinew {
 
 const char* toString(JointType type) {
@@ -8,6 +10,16 @@ const char* toString(JointType type) {
         case JointType::Ball: return "ball";
         case JointType::Pin: return "pin";
         case JointType::Weld: return "weld";
+        case JointType::Custom: return "custom";
+    }
+    return "?";
+}
+
+const char* toString(MotionType type) {
+    switch (type) {
+        case MotionType::Rotational: return "rotational";
+        case MotionType::Translational: return "translational";
+        case MotionType::Coupled: return "coupled";
     }
     return "?";
 }
@@ -22,14 +34,33 @@ const char* toString(WireKind kind) {
     return "?";
 }
 
+const char* toString(WrapShape shape) {
+    switch (shape) {
+        case WrapShape::Sphere: return "sphere";
+        case WrapShape::Cylinder: return "cylinder";
+        case WrapShape::Ellipsoid: return "ellipsoid";
+    }
+    return "?";
+}
+
+const char* toString(WrapMethod method) {
+    switch (method) {
+        case WrapMethod::Hybrid: return "hybrid";
+        case WrapMethod::Midpoint: return "midpoint";
+        case WrapMethod::Axial: return "axial";
+    }
+    return "?";
+}
+
 int getNumQ(JointType type) {
     switch (type) {
         case JointType::Free: return 7;
         case JointType::Ball: return 4;
         case JointType::Pin: return 1;
         case JointType::Weld: return 0;
+        case JointType::Custom: break;
     }
-    return 0;
+    throw Error("getNumQ: a custom joint has as many coordinates as it declares (see Joint::nq)");
 }
 
 int getNumU(JointType type) {
@@ -38,8 +69,9 @@ int getNumU(JointType type) {
         case JointType::Ball: return 3;
         case JointType::Pin: return 1;
         case JointType::Weld: return 0;
+        case JointType::Custom: break;
     }
-    return 0;
+    throw Error("getNumU: a custom joint has as many speeds as coordinates (see Joint::nu)");
 }
 
 int Model::findLinkIndex(const std::string& name) const {
@@ -55,27 +87,35 @@ int Model::findWireIndex(const std::string& name) const {
     return kNotFound;
 }
 
-namespace {
+int Model::findCoordinateIndex(const std::string& name) const {
+    for (std::size_t i = 0; i < coordinates_.size(); ++i)
+        if (coordinates_[i].name == name) return static_cast<int>(i);
+    return kNotFound;
+}
 
-std::vector<std::string> suffixedNames(const Model& model, bool speeds) {
-    static const std::vector<std::string> quaternion{"_qw", "_qx", "_qy", "_qz"}, position{"_x", "_y", "_z"},
-        angular{"_wx", "_wy", "_wz"}, linear{"_vx", "_vy", "_vz"};
+std::vector<std::string> getCoordinateNames(const Model& model) {
     std::vector<std::string> names;
-    for (const Joint& joint : model.getJoints()) {
-        std::vector<std::string> suffixes;
-        if (joint.type == JointType::Free || joint.type == JointType::Ball)
-            suffixes = speeds ? angular : quaternion;
-        if (joint.type == JointType::Free)
-            suffixes.insert(suffixes.end(), (speeds ? linear : position).begin(), (speeds ? linear : position).end());
-        if (joint.type == JointType::Pin) suffixes = {""};
-        for (const std::string& suffix : suffixes) names.push_back(joint.name + suffix);
-    }
+    for (const Coordinate& coordinate : model.getCoordinates()) names.push_back(coordinate.name);
     return names;
 }
 
-}  // namespace
-
-std::vector<std::string> getCoordinateNames(const Model& model) { return suffixedNames(model, false); }
-std::vector<std::string> getSpeedNames(const Model& model) { return suffixedNames(model, true); }
+// Quaternion joints have fewer speeds than coordinates and name them for the axes; the others have one
+// speed per coordinate, named as it.
+std::vector<std::string> getSpeedNames(const Model& model) {
+    static const char* const angular[] = {"_wx", "_wy", "_wz"};
+    static const char* const linear[] = {"_vx", "_vy", "_vz"};
+    std::vector<std::string> names;
+    for (const Joint& joint : model.getJoints()) {
+        if (joint.type == JointType::Free || joint.type == JointType::Ball) {
+            for (const char* suffix : angular) names.push_back(joint.name + suffix);
+            if (joint.type == JointType::Free)
+                for (const char* suffix : linear) names.push_back(joint.name + suffix);
+        } else {
+            for (int k = 0; k < joint.nq; ++k)
+                names.push_back(model.getCoordinates()[static_cast<std::size_t>(joint.qStart + k)].name);
+        }
+    }
+    return names;
+}
 
 }  // namespace sinew

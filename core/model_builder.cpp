@@ -3,6 +3,8 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -28,12 +30,17 @@ void claimName(std::map<std::string, std::string>& defined, const std::string& k
     if (!fresh) throw ModelError(where, "duplicate " + kind + " name '" + name + "' (first defined at " + it->second + ")");
 }
 
-// Rotation taking F's z axis onto `axis` (pin joints rotate about F's z, as Simbody's Pin does). Its z column
-// is the unit axis bit for bit, and an axis that is already unit is not renormalised: the model writer stores
-// that column as the axis, and any drift in its last bits would change the model on every write and read.
-Eigen::Matrix3d rotationWithZAlong(const Eigen::Vector3d& axis) {
+// An axis that is already unit is not renormalised: the model writer stores the axis, and any drift in its
+// last bits would change the model on every write and read.
+Eigen::Vector3d normalizeOnce(const Eigen::Vector3d& axis) {
     const bool isUnit = std::abs(axis.squaredNorm() - 1) <= 8 * std::numeric_limits<double>::epsilon();
-    const Eigen::Vector3d z = isUnit ? axis : axis.normalized();
+    return isUnit ? axis : axis.normalized();
+}
+
+// Rotation taking F's z axis onto `axis` (pin joints rotate about F's z, as Simbody's Pin does); its z column
+// is the unit axis bit for bit.
+Eigen::Matrix3d rotationWithZAlong(const Eigen::Vector3d& axis) {
+    const Eigen::Vector3d z = normalizeOnce(axis);
     Eigen::Matrix3d R = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), z).toRotationMatrix();
     R.col(2) = z;
     return R;
@@ -45,6 +52,133 @@ Eigen::Vector4d quaternionFromRotationVector(const Eigen::Vector3d& rotation) {
                                            : Eigen::Quaterniond::Identity();
     // q and -q are the same rotation; w >= 0 is the one a written model (rotation angle <= pi) reads back as.
     return (q.w() < 0 ? -1.0 : 1.0) * Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
+}
+
+void requireRotation(const std::string& where, const std::string& what, const Eigen::Matrix3d& R) {
+    requireFinite(where, what, R);
+    if (!(R * R.transpose()).isApprox(Eigen::Matrix3d::Identity(), 1e-9) || R.determinant() < 0)
+        throw ModelError(where, what + " must be a rotation matrix (orthonormal, determinant +1)");
+}
+
+// A custom joint's axes and coordinates: six non-zero axes, rotation axes (and translation axes) pairwise
+// non-collinear as OpenSim's CustomJoint requires (|a x b| >= 1e-5 for the unit axes), every coordinate
+// named by an axis declared, and every declared coordinate used by some axis.
+void checkCustomJoint(const JointSpec& js, const std::string& label) {
+    if (js.transformAxes.size() != 6)
+        throw ModelError(js.where, label + ": a custom joint needs 6 transform axes (rotation1-3, translation1-3), got " +
+                                       std::to_string(js.transformAxes.size()));
+    static const char* const axisNames[] = {"rotation1", "rotation2", "rotation3", "translation1", "translation2",
+                                            "translation3"};
+    std::map<std::string, bool> used;  // declared coordinate -> named by an axis
+    for (const CoordinateSpec& c : js.coordinates) {
+        const std::string where = c.where.empty() ? js.where : c.where;
+        if (c.name.empty()) throw ModelError(where, label + ": a coordinate needs a non-empty name");
+        if (!used.emplace(c.name, false).second)
+            throw ModelError(where, label + ": coordinate '" + c.name + "' is declared twice");
+        if (!std::isfinite(c.defaultValue))
+            throw ModelError(where, label + ": coordinate '" + c.name + "': default value must be finite");
+        if (std::isnan(c.rangeMin) || std::isnan(c.rangeMax) || c.rangeMin > c.rangeMax)
+            throw ModelError(where, label + ": coordinate '" + c.name + "': range must be [min, max] with min <= max");
+    }
+    for (int k = 0; k < 6; ++k) {
+        const TransformAxisSpec& axis = js.transformAxes[static_cast<std::size_t>(k)];
+        const std::string name = label + ": " + axisNames[k];
+        if (!axis.axis.allFinite() || axis.axis.norm() < 1e-12)
+            throw ModelError(js.where, name + " needs a finite, non-zero axis");
+        if (!axis.coordinate.empty()) {
+            auto it = used.find(axis.coordinate);
+            if (it == used.end())
+                throw ModelError(js.where, name + " names coordinate '" + axis.coordinate + "', which the joint does not "
+                                                  "declare");
+            it->second = true;
+        }
+    }
+    for (const CoordinateSpec& c : js.coordinates)
+        if (!used.at(c.name))
+            throw ModelError(c.where.empty() ? js.where : c.where,
+                             label + ": coordinate '" + c.name + "' drives none of the joint's transform axes");
+    if (js.coordinates.empty())
+        throw ModelError(js.where, label + ": a custom joint needs at least one coordinate (use a weld joint for none)");
+    for (int group = 0; group < 6; group += 3)
+        for (int a = group; a < group + 3; ++a)
+            for (int b = a + 1; b < group + 3; ++b) {
+                const Eigen::Vector3d u = js.transformAxes[static_cast<std::size_t>(a)].axis.normalized();
+                const Eigen::Vector3d v = js.transformAxes[static_cast<std::size_t>(b)].axis.normalized();
+                if (u.cross(v).norm() < 1e-5)
+                    throw ModelError(js.where, label + ": " + axisNames[a] + " and " + axisNames[b] +
+                                                   " are collinear; a custom joint's rotation axes, and its "
+                                                   "translation axes, must be independent");
+            }
+}
+
+// OpenSim's rule (CustomJoint::constructCoordinates): a coordinate that drives some axis through a linear
+// function of slope +-1 is rotational or translational (the last such axis decides); otherwise coupled.
+MotionType calcMotionType(const std::vector<TransformAxis>& axes, int coordinate) {
+    bool pure = false;
+    MotionType type = MotionType::Coupled;
+    for (std::size_t k = 0; k < axes.size(); ++k) {
+        if (axes[k].coordinate != coordinate) continue;
+        const Function& f = axes[k].function;
+        if (f.getType() == Function::Type::Linear && f.getScale() == 1 && std::abs(f.getCoefficients()[0]) == 1) {
+            type = k < 3 ? MotionType::Rotational : MotionType::Translational;
+            pure = true;
+        } else if (!pure) {
+            type = MotionType::Coupled;
+        }
+    }
+    return type;
+}
+
+// OpenSim's xyz_body_rotation: R = Rx(a) Ry(b) Rz(c), a body-fixed X-Y-Z sequence (Simbody's
+// Rotation::setRotationToBodyFixedXYZ).
+Eigen::Matrix3d rotationFromBodyFixedXYZ(const Eigen::Vector3d& angles) {
+    return (Eigen::AngleAxisd(angles[0], Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(angles[1], Eigen::Vector3d::UnitY()) *
+            Eigen::AngleAxisd(angles[2], Eigen::Vector3d::UnitZ()))
+        .toRotationMatrix();
+}
+
+WrapObject buildWrapObject(const WrapObjectSpec& os, int link) {
+    const std::string label = "wrap object '" + os.name + "'";
+    WrapObject object;
+    object.name = os.name;
+    object.shape = os.shape;
+    object.link = link;
+    requireFinite(os.where, label + ": rotation", os.xyzBodyRotation);
+    requireFinite(os.where, label + ": translation", os.translation);
+    object.xyzBodyRotation = os.xyzBodyRotation;
+    object.R_BW = rotationFromBodyFixedXYZ(os.xyzBodyRotation);
+    object.p_BW = os.translation;
+    switch (os.shape) {
+        case WrapShape::Sphere:
+        case WrapShape::Cylinder:
+            if (!(std::isfinite(os.radius) && os.radius > 0)) throw ModelError(os.where, label + ": radius must be > 0");
+            object.radius = os.radius;
+            if (os.shape == WrapShape::Cylinder) {
+                if (!(std::isfinite(os.length) && os.length > 0)) throw ModelError(os.where, label + ": length must be > 0");
+                object.length = os.length;
+            }
+            break;
+        case WrapShape::Ellipsoid:
+            if (!(os.radii.allFinite() && os.radii.minCoeff() > 0))
+                throw ModelError(os.where, label + ": the three radii must be > 0");
+            object.radii = os.radii;
+            break;
+    }
+    // OpenSim's spellings: "all", or an axis with an optional sign ("x" means "+x"), either case.
+    std::string q = os.quadrant;
+    for (char& c : q) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (q != "all") {
+        const bool negative = !q.empty() && q[0] == '-';
+        const std::string axis = !q.empty() && (q[0] == '-' || q[0] == '+') ? q.substr(1) : q;
+        if (axis != "x" && axis != "y" && axis != "z")
+            throw ModelError(os.where, label + ": unknown quadrant '" + os.quadrant + "' (expected all, x, +x, -x, y, +y, "
+                                               "-y, z, +z or -z)");
+        object.quadrantAxis = axis[0] - 'x';
+        object.quadrantSign = negative ? -1 : 1;
+        if (os.shape == WrapShape::Cylinder && object.quadrantAxis == 2)
+            throw ModelError(os.where, label + ": a cylinder's quadrant must be across its axis (x or y), not along z");
+    }
+    return object;
 }
 
 void checkMassProperties(const LinkSpec& link, bool welded) {
@@ -75,6 +209,39 @@ void checkMassProperties(const LinkSpec& link, bool welded) {
         throw ModelError(link.where, "link '" + link.name + "': inertia violates the triangle inequality of principal "
                                      "moments (" + std::to_string(eig[0]) + " + " + std::to_string(eig[1]) + " < " +
                                      std::to_string(eig[2]) + "), so no rigid body has it");
+}
+
+// A custom joint's transform axes (unit axes, coordinate indices, functions with OpenSim's defaults) and
+// its coordinates, in order of first appearance in the axes as OpenSim orders them (CustomJoint::
+// constructCoordinates), so q matches OpenSim's and Simbody's FunctionBased mobilizer's.
+template <typename AddCoordinate>
+void addCustomCoordinates(const JointSpec& js, Joint& joint, AddCoordinate&& addCoordinate) {
+    std::vector<std::string> order;
+    for (const TransformAxisSpec& spec : js.transformAxes) {
+        TransformAxis axis;
+        axis.axis = normalizeOnce(spec.axis);  // idempotent, so written models read back bit for bit
+        if (!spec.coordinate.empty()) {
+            auto it = std::find(order.begin(), order.end(), spec.coordinate);
+            axis.coordinate = static_cast<int>(it - order.begin());
+            if (it == order.end()) order.push_back(spec.coordinate);
+        }
+        axis.function = spec.function ? *spec.function
+                                      : spec.coordinate.empty() ? Function::constant(0) : Function::linear(1, 0);
+        joint.transformAxes.push_back(axis);
+    }
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        const CoordinateSpec& spec = *std::find_if(js.coordinates.begin(), js.coordinates.end(),
+                                                   [&](const CoordinateSpec& c) { return c.name == order[k]; });
+        Coordinate c;
+        c.name = spec.name;
+        c.motionType = calcMotionType(joint.transformAxes, static_cast<int>(k));
+        c.defaultValue = spec.defaultValue;
+        c.rangeMin = spec.rangeMin;
+        c.rangeMax = spec.rangeMax;
+        c.clamped = spec.clamped;
+        c.locked = spec.locked;
+        addCoordinate(c, spec.where.empty() ? js.where : spec.where);
+    }
 }
 
 }  // namespace
@@ -133,6 +300,15 @@ Model ModelBuilder::build() const {
         } else if (js.axis) {
             throw ModelError(js.where, label + ": only pin joints take an axis");
         }
+        if (js.type == JointType::Custom) {
+            checkCustomJoint(js, label);
+        } else if (!js.transformAxes.empty() || !js.coordinates.empty()) {
+            throw ModelError(js.where, label + ": only custom joints take transform axes and coordinates");
+        }
+        if ((js.R_PF || js.R_BM) && js.type != JointType::Custom && js.type != JointType::Weld)
+            throw ModelError(js.where, label + ": only custom and weld joints take frame orientations");
+        if (js.R_PF) requireRotation(js.where, label + ": parent frame orientation", *js.R_PF);
+        if (js.R_BM) requireRotation(js.where, label + ": child frame orientation", *js.R_BM);
         if (js.initialRotation && js.type != JointType::Ball && js.type != JointType::Free)
             throw ModelError(js.where, label + ": initial_rotation applies to ball and free joints only");
         if (js.initialAngle && js.type != JointType::Pin)
@@ -183,10 +359,36 @@ Model ModelBuilder::build() const {
 
     std::map<std::string, int> linkIndex;
     int nq = 0, nu = 0;
-    std::vector<double> defaultQ;
+    std::map<std::string, std::string> coordinateWhere;
+    // Appends the next coordinate (q entry) of the joint about to be appended.
+    auto addCoordinate = [&](Coordinate coordinate, const std::string& where) {
+        claimName(coordinateWhere, "coordinate", coordinate.name, where);
+        coordinate.joint = static_cast<int>(model.joints_.size());
+        model.coordinates_.push_back(std::move(coordinate));
+    };
+    // A free or ball joint's quaternion and (free) position entries, named after the joint.
+    auto addQuaternionCoordinates = [&](const std::string& where, const std::string& name, const Eigen::Vector4d& quat,
+                                        const Eigen::Vector3d* p) {
+        static const char* const quaternionSuffixes[] = {"_qw", "_qx", "_qy", "_qz"};
+        static const char* const positionSuffixes[] = {"_x", "_y", "_z"};
+        for (int k = 0; k < 4; ++k) {
+            Coordinate c;
+            c.name = name + quaternionSuffixes[k];
+            c.defaultValue = quat[k];
+            addCoordinate(c, where);
+        }
+        for (int k = 0; p && k < 3; ++k) {
+            Coordinate c;
+            c.name = name + positionSuffixes[k];
+            c.motionType = MotionType::Translational;
+            c.defaultValue = (*p)[k];
+            addCoordinate(c, where);
+        }
+    };
     auto appendJoint = [&](Joint joint, Link link) {
-        joint.nq = getNumQ(joint.type);
-        joint.nu = getNumU(joint.type);
+        const bool custom = joint.type == JointType::Custom;
+        joint.nq = custom ? static_cast<int>(model.coordinates_.size()) - nq : getNumQ(joint.type);
+        joint.nu = custom ? joint.nq : getNumU(joint.type);
         joint.qStart = nq;
         joint.uStart = nu;
         nq += joint.nq;
@@ -205,16 +407,25 @@ Model ModelBuilder::build() const {
         joint.p_PF = js.p_PF;
         joint.p_BM = js.p_BM;
         if (js.type == JointType::Pin) joint.R_PF = joint.R_BM = rotationWithZAlong(*js.axis);
+        if (js.R_PF) joint.R_PF = *js.R_PF;
+        if (js.R_BM) joint.R_BM = *js.R_BM;
         const Eigen::Vector4d quat = quaternionFromRotationVector(js.initialRotation.value_or(Eigen::Vector3d::Zero()));
         switch (js.type) {
             case JointType::Free: {
                 const Eigen::Vector3d p = js.initialPosition.value_or(Eigen::Vector3d::Zero());
-                defaultQ.insert(defaultQ.end(), {quat[0], quat[1], quat[2], quat[3], p[0], p[1], p[2]});
+                addQuaternionCoordinates(js.where, js.name, quat, &p);
                 break;
             }
-            case JointType::Ball: defaultQ.insert(defaultQ.end(), {quat[0], quat[1], quat[2], quat[3]}); break;
-            case JointType::Pin: defaultQ.push_back(js.initialAngle.value_or(0.0)); break;
+            case JointType::Ball: addQuaternionCoordinates(js.where, js.name, quat, nullptr); break;
+            case JointType::Pin: {
+                Coordinate c;
+                c.name = js.name;
+                c.defaultValue = js.initialAngle.value_or(0.0);
+                addCoordinate(c, js.where);
+                break;
+            }
             case JointType::Weld: break;
+            case JointType::Custom: addCustomCoordinates(js, joint, addCoordinate); break;
         }
         // Exactly symmetric (an inertia computed as R D R^T is not), as the model file stores one triangle.
         const Eigen::Matrix3d inertia_Bcom = 0.5 * (ls.inertia_Bcom + ls.inertia_Bcom.transpose());
@@ -224,7 +435,7 @@ Model ModelBuilder::build() const {
         Joint joint;
         joint.name = v.name;
         joint.type = JointType::Free;
-        defaultQ.insert(defaultQ.end(), {1, 0, 0, 0, v.initialPosition[0], v.initialPosition[1], v.initialPosition[2]});
+        addQuaternionCoordinates(v.where, v.name, Eigen::Vector4d(1, 0, 0, 0), &v.initialPosition);
         Link link;
         link.name = v.name;
         link.isVirtual = true;
@@ -232,7 +443,8 @@ Model ModelBuilder::build() const {
     }
     model.nq_ = nq;
     model.nu_ = nu;
-    model.defaultQ_ = Eigen::Map<const Eigen::VectorXd>(defaultQ.data(), static_cast<Eigen::Index>(defaultQ.size()));
+    model.defaultQ_.resize(nq);
+    for (int i = 0; i < nq; ++i) model.defaultQ_[i] = model.coordinates_[static_cast<std::size_t>(i)].defaultValue;
 
     auto resolveLink = [&](const std::string& where, const std::string& owner, const std::string& name) {
         if (name == "ground")
@@ -275,7 +487,25 @@ Model ModelBuilder::build() const {
         model.loops_.push_back(loop);
     }
 
-    // Wires.
+    // Wrap objects, then wires (which name them).
+    std::map<std::string, std::string> wrapWhere;
+    std::map<std::string, int> wrapIndex;
+    for (const WrapObjectSpec& os : wrapObjects_) {
+        claimName(wrapWhere, "wrap object", os.name, os.where);
+        wrapIndex[os.name] = static_cast<int>(model.wrapObjects_.size());
+        model.wrapObjects_.push_back(buildWrapObject(os, resolveLink(os.where, "wrap object '" + os.name + "'", os.link)));
+    }
+    // A coordinate a wire point depends on: its index in q and in u, for one with qdot = u.
+    auto resolveCoordinate = [&](const std::string& where, const std::string& owner, const std::string& name) {
+        const int q = model.findCoordinateIndex(name);
+        if (q == Model::kNotFound) throw ModelError(where, owner + ": unknown coordinate '" + name + "'");
+        const Joint& joint = model.joints_[static_cast<std::size_t>(model.coordinates_[static_cast<std::size_t>(q)].joint)];
+        if (joint.nq != joint.nu)
+            throw ModelError(where, owner + ": coordinate '" + name + "' is part of " + toString(joint.type) + " joint '" +
+                                        joint.name + "'s quaternion; a wire point can follow a pin or custom coordinate only");
+        return std::pair<int, int>(q, joint.uStart + (q - joint.qStart));
+    };
+
     std::map<std::string, std::string> wireWhere;
     for (const WireSpec& ws : wires_) {
         claimName(wireWhere, "wire", ws.name, ws.where);
@@ -291,15 +521,50 @@ Model ModelBuilder::build() const {
         for (std::size_t k = 0; k < ws.points.size(); ++k) {
             const WirePointSpec& ps = ws.points[k];
             const std::string& where = ps.where.empty() ? ws.where : ps.where;
+            const std::string pointLabel = label + ": point " + std::to_string(k);
             WirePoint point{resolveLink(where, label, ps.link), ps.p_B};
-            requireFinite(where, label + ": point " + std::to_string(k), ps.p_B);
-            if (k > 0) {
+            const int pointIndex = static_cast<int>(k);
+            if (ps.condition) {
+                const WirePointConditionSpec& c = *ps.condition;
+                if (!std::isfinite(c.min) || !std::isfinite(c.max) || c.min > c.max)
+                    throw ModelError(where, pointLabel + ": the active range of coordinate '" + c.coordinate +
+                                                "' must be finite with min <= max");
+                wire.conditions.push_back({pointIndex, resolveCoordinate(where, pointLabel, c.coordinate).first, c.min, c.max});
+            }
+            std::array<bool, 3> moving{false, false, false};
+            for (const WirePointMotionSpec& m : ps.motions) {
+                if (m.axis < 0 || m.axis > 2 || moving[static_cast<std::size_t>(m.axis)])
+                    throw ModelError(where, pointLabel + ": each of x, y, z can move with one coordinate at most");
+                moving[static_cast<std::size_t>(m.axis)] = true;
+                point.p_B[m.axis] = 0;  // not read: the function gives this component
+                const auto [q, u] = resolveCoordinate(where, pointLabel, m.coordinate);
+                wire.motions.push_back({pointIndex, m.axis, q, u, m.function});
+            }
+            requireFinite(where, pointLabel, point.p_B);
+            // Only two fixed points can coincide for good; conditional and moving ones part again.
+            const bool fixedPair = k > 0 && !ps.condition && ps.motions.empty() && !ws.points[k - 1].condition &&
+                                   ws.points[k - 1].motions.empty();
+            if (fixedPair) {
                 const WirePoint& prev = model.wirePoints_.back();
                 if (prev.link == point.link && (prev.p_B - point.p_B).norm() < 1e-12)
                     throw ModelError(where, label + ": points " + std::to_string(k - 1) + " and " + std::to_string(k) +
                                                 " coincide on link '" + ps.link + "' (zero-length segment)");
             }
             model.wirePoints_.push_back(point);
+        }
+        for (const WireWrapSpec& wr : ws.wraps) {
+            const std::string& where = wr.where.empty() ? ws.where : wr.where;
+            auto it = wrapIndex.find(wr.object);
+            if (it == wrapIndex.end()) throw ModelError(where, label + ": unknown wrap object '" + wr.object + "'");
+            const int first = wr.firstPoint.value_or(0), last = wr.lastPoint.value_or(wire.numPoints - 1);
+            if (first < 0 || last >= wire.numPoints || first >= last)
+                throw ModelError(where, label + ": wrap range [" + std::to_string(first) + ", " + std::to_string(last) +
+                                            "] must name two of its points 0.." + std::to_string(wire.numPoints - 1) +
+                                            ", first before last");
+            for (const WireWrap& other : wire.wraps)
+                if (other.object == it->second)
+                    throw ModelError(where, label + ": wraps over '" + wr.object + "' twice");
+            wire.wraps.push_back({it->second, first, last, wr.method});
         }
         wire.lawSpec = ws.law;
         try {
@@ -310,10 +575,12 @@ Model ModelBuilder::build() const {
             throw ModelError(ws.lawWhere.empty() ? ws.where : ws.lawWhere, label + ": " + e.what());
         }
         std::set<int, std::greater<int>> support;
-        for (int k = 0; k < wire.numPoints; ++k)
-            for (int l = model.wirePoints_[static_cast<std::size_t>(wire.firstPoint + k)].link; l != kGround;
-                 l = model.joints_[static_cast<std::size_t>(l)].parent)
+        auto addSupport = [&](int link) {
+            for (int l = link; l != kGround; l = model.joints_[static_cast<std::size_t>(l)].parent)
                 if (!support.insert(l).second) break;
+        };
+        for (int k = 0; k < wire.numPoints; ++k) addSupport(model.wirePoints_[static_cast<std::size_t>(wire.firstPoint + k)].link);
+        for (const WireWrap& wrap : wire.wraps) addSupport(model.wrapObjects_[static_cast<std::size_t>(wrap.object)].link);
         wire.supportLinks.assign(support.begin(), support.end());
         model.wires_.push_back(std::move(wire));
     }

@@ -36,6 +36,74 @@ int pickParent(const RandomModelOptions& options, std::mt19937& rng, int child) 
     return child - 1;
 }
 
+Eigen::Vector3d uniformDirection(std::mt19937& rng) {
+    std::normal_distribution<double> normal;
+    return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+}
+
+// A random function of a coordinate for a custom joint's axis, displacements of about `size` (rad or m).
+Function randomFunction(std::mt19937& rng, double size) {
+    const int kind = uniformInt(rng, 0, 3);
+    if (kind == 0) return Function::linear(uniform(rng, -1, 1), uniform(rng, -size, size));
+    if (kind == 1) return Function::polynomial({uniform(rng, -0.1, 0.1) * size, uniform(rng, -0.3, 0.3) * size,
+                                                uniform(rng, -size, size), uniform(rng, -size, size)});
+    std::vector<double> x{-2.0}, y;
+    while (x.back() < 2.0) x.push_back(std::min(2.0, x.back() + uniform(rng, 0.3, 1.2)));
+    for (std::size_t k = 0; k < x.size(); ++k) y.push_back(uniform(rng, -size, size));
+    const Function spline = kind == 2 ? Function::simmSpline(x, y) : Function::naturalCubicSpline(x, y);
+    return uniform(rng, 0, 1) < 0.5 ? spline.multipliedBy(uniform(rng, 0.8, 1.2)) : spline;
+}
+
+// A custom joint on random, well separated axes. A root joint drives each axis linearly by a coordinate of
+// its own; others have 1-3 coordinates, each the linear driver of a rotation, and the remaining axes
+// constant or coupled. Two layouts where Simbody's FunctionBased mobilizer departs from the derivatives of
+// its own X_FM are left out, since these models are compared against Simbody (docs/opensim-joints.md,
+// "Simbody's FunctionBased"): constant rotations are zero (as in OpenSim's models), and rotation 3 is never
+// coupled to the joint's first coordinate while rotation 2 moves.
+void makeRandomCustomJoint(std::mt19937& rng, bool root, JointSpec& joint) {
+    joint.type = JointType::Custom;
+    joint.transformAxes.assign(6, TransformAxisSpec{});
+    for (int group = 0; group < 6; group += 3) {
+        Eigen::Matrix3d axes;
+        do {
+            for (int k = 0; k < 3; ++k) axes.col(k) = uniformDirection(rng);
+        } while (std::abs(axes.determinant()) < 0.3);
+        for (int k = 0; k < 3; ++k) joint.transformAxes[static_cast<std::size_t>(group + k)].axis = axes.col(k);
+    }
+    const int numCoordinates = root ? 6 : uniformInt(rng, 1, 3);
+    for (int c = 0; c < numCoordinates; ++c) {
+        CoordinateSpec coordinate;
+        coordinate.name = joint.name + "_q" + std::to_string(c);
+        joint.coordinates.push_back(coordinate);
+    }
+    const int numDriven = std::min(numCoordinates, 3);
+    for (;;) {
+        std::vector<int> driven{0, 1, 2};  // rotation axes given a linear driver (the first numDriven)
+        std::shuffle(driven.begin(), driven.end(), rng);
+        for (int k = 0; k < 6; ++k) {
+            TransformAxisSpec& axis = joint.transformAxes[static_cast<std::size_t>(k)];
+            const auto driver = std::find(driven.begin(), driven.begin() + numDriven, k);
+            axis.function.reset();
+            if (root) {
+                axis.coordinate = joint.coordinates[static_cast<std::size_t>(k)].name;
+            } else if (driver != driven.begin() + numDriven) {
+                axis.coordinate = joint.coordinates[static_cast<std::size_t>(driver - driven.begin())].name;
+            } else if (uniform(rng, 0, 1) < 0.6) {
+                axis.coordinate = joint.coordinates[static_cast<std::size_t>(uniformInt(rng, 0, numCoordinates - 1))].name;
+                axis.function = randomFunction(rng, k < 3 ? 0.3 : 0.02);
+            } else {
+                axis.coordinate.clear();
+                axis.function = Function::constant(k < 3 ? 0.0 : uniform(rng, -0.02, 0.02));
+            }
+        }
+        // The first coordinate in axis order becomes the joint's q0 (the builder orders them so).
+        std::string first;
+        for (const TransformAxisSpec& axis : joint.transformAxes)
+            if (first.empty()) first = axis.coordinate;
+        if (joint.transformAxes[1].coordinate.empty() || joint.transformAxes[2].coordinate != first) return;
+    }
+}
+
 // A wire's points before its force law is known, with the default-pose positions needed to pick one.
 struct DraftWire {
     WireSpec spec;
@@ -67,6 +135,7 @@ Model generateRandomModel(const RandomModelOptions& options) {
             joint.type = options.rootJoint;
             joint.parent = "ground";
             if (joint.type == JointType::Pin) joint.axis = uniformVector(rng, 1).normalized();
+            if (joint.type == JointType::Custom) makeRandomCustomJoint(rng, true, joint);
         } else {
             parent[static_cast<std::size_t>(i)] = pickParent(options, rng, i);
             joint.parent = linkName(parent[static_cast<std::size_t>(i)]);
@@ -74,6 +143,11 @@ Model generateRandomModel(const RandomModelOptions& options) {
             joint.p_BM = uniformVector(rng, 0.02);
             joint.type = uniform(rng, 0, 1) < options.pinFraction ? JointType::Pin : JointType::Ball;
             if (joint.type == JointType::Pin) joint.axis = uniformVector(rng, 1).normalized();
+            // Drawn only when asked for, so models without custom joints keep their seeds' shapes.
+            if (options.customJointFraction > 0 && uniform(rng, 0, 1) < options.customJointFraction) {
+                joint.axis.reset();
+                makeRandomCustomJoint(rng, false, joint);
+            }
         }
         tree.addJoint(joint);
     }
@@ -193,6 +267,8 @@ Eigen::VectorXd generateRandomCoordinates(const Model& model, std::mt19937& rng)
         }
         if (joint.type == JointType::Free) q.segment<3>(joint.qStart + 4) = uniformVector(rng, 1.0);
         if (joint.type == JointType::Pin) q[joint.qStart] = uniform(rng, -M_PI, M_PI);
+        if (joint.type == JointType::Custom)
+            for (int k = 0; k < joint.nq; ++k) q[joint.qStart + k] = uniform(rng, -2.5, 2.5);
     }
     return q;
 }

@@ -1,57 +1,88 @@
 #include "sinew/core/wire_jacobian.hpp"
 
 #include "sinew/core/kinematics.hpp"
+#include "sinew/core/wire_path.hpp"
 
 namespace sinew {
 namespace {
 
-// Adds the spatial force (about the ground origin) of point force f_G applied at p_G to its link.
+// Adds the spatial force (about the link's origin) of point force f_G applied at p_G to its link.
 void addPointForce(Data& data, int link, const Eigen::Vector3d& p_G, const Eigen::Vector3d& f_G) {
     SpatialVector& F = data.F_G[static_cast<std::size_t>(link)];
     F.head<3>() += (p_G - data.p_GB[static_cast<std::size_t>(link)]).cross(f_G);
     F.tail<3>() += f_G;
 }
 
+// Point forces `scale` * dL/dp at every point of wire w's path (tangent points on their objects' links).
+void addWirePointForces(const Model& model, Data& data, int w, double scale) {
+    const Wire& wire = model.getWire(w);
+    if (wire.isPolyline()) {
+        const std::vector<WirePoint>& points = model.getWirePoints();
+        for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
+            const std::size_t kk = static_cast<std::size_t>(k);
+            addPointForce(data, points[kk].link, data.p_GP[kk], scale * data.dLdp_GP[kk]);
+        }
+        return;
+    }
+    const Data::WirePathPoint* path = data.wirePath.data() + data.wirePathStart[static_cast<std::size_t>(w)];
+    for (int i = 0; i < data.wirePathSize[static_cast<std::size_t>(w)]; ++i)
+        addPointForce(data, path[i].link, path[i].p_G, scale * path[i].dLdp_G);
+}
+
+// Calls f(u index, dL/du through the point's own motion) for each moving component on wire w's path:
+// dL/dp . R_GB e_axis dp_B[axis]/dq, the term a moving point adds to its coordinate's column.
+template <typename F>
+void forEachMotionTerm(const Model& model, const Data& data, int w, F&& f) {
+    const Wire& wire = model.getWire(w);
+    if (wire.motions.empty()) return;
+    const Data::WirePathPoint* path = data.wirePath.data() + data.wirePathStart[static_cast<std::size_t>(w)];
+    for (int i = 0; i < data.wirePathSize[static_cast<std::size_t>(w)]; ++i) {
+        if (path[i].point < 0) continue;
+        for (const WirePointMotion& m : wire.motions) {
+            if (m.point != path[i].point) continue;
+            const Eigen::Matrix3d& R_GB = data.R_GB[static_cast<std::size_t>(path[i].link)];
+            f(m.u, path[i].dLdp_G.dot(R_GB.col(m.axis)) * calcWirePointMotionRate(model, m, data.q));
+        }
+    }
+}
+
 }  // namespace
 
 void calcWireJacobian(const Model& model, Data& data, Eigen::Ref<Eigen::MatrixXd> J) {
-    const std::vector<WirePoint>& points = model.getWirePoints();
     J.setZero();
     for (int w = 0; w < model.getNumWires(); ++w) {
         const Wire& wire = model.getWire(w);
         for (int link : wire.supportLinks) data.F_G[static_cast<std::size_t>(link)].setZero();
         // Row w is the generalized force of unit "forces" dL/dp applied at the points (virtual work).
-        for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
-            const std::size_t kk = static_cast<std::size_t>(k);
-            addPointForce(data, points[kk].link, data.p_GP[kk], data.dLdp_GP[kk]);
-        }
+        addWirePointForces(model, data, w, 1.0);
         for (int link : wire.supportLinks) {
             const Joint& joint = model.getJoint(link);
             const std::size_t b = static_cast<std::size_t>(link);
             double column[6];
-            projectOntoJoint(joint, data.R_GF[b], data.p_GM[b], data.p_GB[b], data.F_G[b], column);
+            projectOntoJoint(joint, data, link, data.p_GB[b], data.F_G[b], column);
             for (int c = 0; c < joint.nu; ++c) J(w, joint.uStart + c) = column[c];
             addToParent(model, data, link);
         }
+        forEachMotionTerm(model, data, w, [&](int u, double dLdu) { J(w, u) += dLdu; });
     }
 }
 
 void calcWireLinkForces(const Model& model, Data& data, const Eigen::VectorXd& tensions) {
-    const std::vector<WirePoint>& points = model.getWirePoints();
     for (SpatialVector& F : data.F_G) F.setZero();
-    for (int w = 0; w < model.getNumWires(); ++w) {
-        const Wire& wire = model.getWire(w);
-        for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
-            const std::size_t kk = static_cast<std::size_t>(k);
-            addPointForce(data, points[kk].link, data.p_GP[kk], -tensions[w] * data.dLdp_GP[kk]);
-        }
-    }
+    for (int w = 0; w < model.getNumWires(); ++w) addWirePointForces(model, data, w, -tensions[w]);
+}
+
+void addWirePointMotionForces(const Model& model, const Data& data, const Eigen::VectorXd& tensions,
+                              Eigen::Ref<Eigen::VectorXd> tau) {
+    for (int w = 0; w < model.getNumWires(); ++w)
+        forEachMotionTerm(model, data, w, [&](int u, double dLdu) { tau[u] -= tensions[w] * dLdu; });
 }
 
 void calcWireGeneralizedForces(const Model& model, Data& data, const Eigen::VectorXd& tensions,
                                Eigen::Ref<Eigen::VectorXd> tau) {
     calcWireLinkForces(model, data, tensions);
     calcGeneralizedForcesFromLinkForces(model, data, tau);
+    addWirePointMotionForces(model, data, tensions, tau);
 }
 
 }  // namespace sinew

@@ -1,8 +1,179 @@
 #include "sinew/core/wire_path.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "sinew/core/error.hpp"
+#include "sinew/core/wrap_object.hpp"
 
 namespace sinew {
+namespace {
+
+using PathPoint = Data::WirePathPoint;
+
+// OpenSim's ConditionalPathPoint::isActive, with its 1e-5 widening of the range.
+bool isPointActive(const Wire& wire, int point, const Eigen::VectorXd& q) {
+    for (const WirePointCondition& c : wire.conditions)
+        if (c.point == point) return q[c.q] >= c.min - 1e-5 && q[c.q] <= c.max + 1e-5;
+    return true;
+}
+
+double clampToRange(const Model& model, int q, double value) {
+    const Coordinate& c = model.getCoordinates()[static_cast<std::size_t>(q)];
+    return std::clamp(value, c.rangeMin, c.rangeMax);
+}
+
+bool isSameWrap(const PathPoint& a, const PathPoint& b) { return a.wrap >= 0 && a.wrap == b.wrap; }
+
+// The length of a path: straight segments, and the surface length between a wrap's two tangent points.
+double calcPathLength(const PathPoint* path, int size) {
+    double length = 0;
+    for (int i = 0; i + 1 < size; ++i)
+        length += isSameWrap(path[i], path[i + 1]) ? path[i + 1].arcLength : (path[i + 1].p_G - path[i].p_G).norm();
+    return length;
+}
+
+// A wire's path slice in Data: a short array with room for every point and two tangent points per wrap.
+class PathSlice {
+public:
+    PathSlice(PathPoint* begin, int& size) : begin_(begin), size_(size) {}
+    PathPoint* data() const { return begin_; }
+    int size() const { return size_; }
+    PathPoint& operator[](int i) const { return begin_[i]; }
+    void append(const PathPoint& p) { begin_[size_++] = p; }
+    void insert(int at, const PathPoint& p) {
+        std::copy_backward(begin_ + at, begin_ + size_, begin_ + size_ + 1);
+        begin_[at] = p;
+        ++size_;
+    }
+    // Removes a wrap's two tangent points, if the path has them.
+    void removeWrap(int wrap) {
+        for (int i = 0; i < size_; ++i)
+            if (begin_[i].wrap == wrap) {
+                std::copy(begin_ + i + 2, begin_ + size_, begin_ + i);
+                size_ -= 2;
+                return;
+            }
+    }
+    int find(int point) const {
+        for (int i = 0; i < size_; ++i)
+            if (begin_[i].point == point) return i;
+        return -1;
+    }
+
+private:
+    PathPoint* begin_;
+    int& size_;
+};
+
+// OpenSim's GeometryPath::applyWrapObjects: each wrap in turn takes its tangent points out, tries every
+// segment in its range, and puts back the wrap a segment must take (it passes through the object) or,
+// failing that, the one that lengthens the path least. With several wraps, up to 8 rounds until the
+// length settles within 0.5 mm; a first round where the first wrap missed and the second found an end
+// inside its object is redone with those two swapped.
+void applyWraps(const Model& model, const Data& data, const Wire& wire, PathSlice path) {
+    const int numWraps = static_cast<int>(wire.wraps.size());
+    const int rounds = numWraps < 2 ? 1 : 8;
+    bool swapped = false;
+    double lastLength = std::numeric_limits<double>::infinity();
+    WrapStatus firstStatus = WrapStatus::NoWrap, secondStatus = WrapStatus::NoWrap;
+    for (int round = 0; round < rounds; ++round) {
+        for (int i = 0; i < numWraps; ++i) {
+            const int w = swapped && i < 2 ? 1 - i : i;
+            const WireWrap& wrap = wire.wraps[static_cast<std::size_t>(w)];
+            const WrapObject& object = model.getWrapObjects()[static_cast<std::size_t>(wrap.object)];
+            path.removeWrap(w);
+            // The first and last active points of the wrap's range, and where they are in the path.
+            int first = wrap.firstPoint, last = wrap.lastPoint;
+            while (first <= wrap.lastPoint && !isPointActive(wire, first, data.q)) ++first;
+            while (last >= wrap.firstPoint && !isPointActive(wire, last, data.q)) --last;
+            if (first > last) continue;
+            const int start = path.find(first), end = path.find(last);
+            const std::size_t b = static_cast<std::size_t>(object.link);
+            const Eigen::Matrix3d R_GW = data.R_GB[b] * object.R_BW;
+            const Eigen::Vector3d p_GW = data.p_GB[b] + data.R_GB[b] * object.p_BW;
+            WrapStatus status = WrapStatus::NoWrap;
+            WrapSolution best;
+            int bestSegment = -1;
+            double leastIncrease = std::numeric_limits<double>::infinity();
+            for (int k = start; k < end; ++k) {
+                if (isSameWrap(path[k], path[k + 1])) continue;
+                const Eigen::Vector3d &p1 = path[k].p_G, &p2 = path[k + 1].p_G;
+                const WrapSolution s = calcWrap(object, wrap.method, R_GW.transpose() * (p1 - p_GW), R_GW.transpose() * (p2 - p_GW));
+                status = s.status;
+                if (status == WrapStatus::MandatoryWrap) {
+                    best = s;
+                    bestSegment = k;
+                    break;
+                }
+                if (status == WrapStatus::Wrapped) {
+                    const double increase = (p_GW + R_GW * s.r1_W - p1).norm() + s.arcLength +
+                                            (p2 - p_GW - R_GW * s.r2_W).norm() - (p2 - p1).norm();
+                    if (increase < leastIncrease) {
+                        leastIncrease = increase;
+                        best = s;
+                        bestSegment = k;
+                    }
+                }
+            }
+            if (i == 0) firstStatus = status;
+            if (i == 1) secondStatus = status;
+            if (bestSegment < 0) continue;
+            path.insert(bestSegment + 1, PathPoint{object.link, -1, w, p_GW + R_GW * best.r1_W, Eigen::Vector3d::Zero(), 0});
+            path.insert(bestSegment + 2,
+                        PathPoint{object.link, -1, w, p_GW + R_GW * best.r2_W, Eigen::Vector3d::Zero(), best.arcLength});
+        }
+        const double length = calcPathLength(path.data(), path.size());
+        if (std::abs(length - lastLength) < 0.0005) break;
+        lastLength = length;
+        if (round == 0 && numWraps > 1 && firstStatus == WrapStatus::NoWrap && secondStatus == WrapStatus::InsideRadius) {
+            swapped = true;
+            path.removeWrap(0);
+        }
+    }
+}
+
+// The path of a wire with conditional or moving points or wraps (points already in Data::p_GP), its
+// length, and d(length)/d(p) of each of its points with tangent points held on their objects: by the
+// envelope theorem that is the whole derivative for shortest paths (docs/wire-paths.md).
+void calcGeneralWirePath(const Model& model, Data& data, int w) {
+    const Wire& wire = model.getWire(w);
+    data.wirePathSize[static_cast<std::size_t>(w)] = 0;
+    PathSlice path(data.wirePath.data() + data.wirePathStart[static_cast<std::size_t>(w)],
+                   data.wirePathSize[static_cast<std::size_t>(w)]);
+    for (int k = 0; k < wire.numPoints; ++k)
+        if (isPointActive(wire, k, data.q)) {
+            const std::size_t kk = static_cast<std::size_t>(wire.firstPoint + k);
+            path.append(PathPoint{model.getWirePoints()[kk].link, k, -1, data.p_GP[kk], Eigen::Vector3d::Zero(), 0});
+        }
+    applyWraps(model, data, wire, path);
+    for (int i = 0; i < path.size(); ++i) path[i].dLdp_G.setZero();
+    for (int i = 0; i + 1 < path.size(); ++i) {
+        if (isSameWrap(path[i], path[i + 1])) continue;  // rigid on the object's link: no derivative
+        const Eigen::Vector3d segment = path[i + 1].p_G - path[i].p_G;
+        const double l = segment.norm();
+        if (l <= 1e-12) continue;  // a collapsed segment pulls on neither end
+        path[i].dLdp_G -= segment / l;
+        path[i + 1].dLdp_G += segment / l;
+    }
+    data.wireLength[w] = calcPathLength(path.data(), path.size());
+}
+
+}  // namespace
+
+Eigen::Vector3d calcWirePointLocation(const Model& model, const Wire& wire, int point, const Eigen::VectorXd& q) {
+    Eigen::Vector3d p_B = model.getWirePoints()[static_cast<std::size_t>(wire.firstPoint + point)].p_B;
+    for (const WirePointMotion& m : wire.motions)
+        if (m.point == point) p_B[m.axis] = m.function.calcValue(clampToRange(model, m.q, q[m.q]));
+    return p_B;
+}
+
+double calcWirePointMotionRate(const Model& model, const WirePointMotion& motion, const Eigen::VectorXd& q) {
+    const double value = q[motion.q];
+    if (clampToRange(model, motion.q, value) != value) return 0;
+    return motion.function.calcDerivative(value, 1);
+}
 
 void calcWirePaths(const Model& model, Data& data) {
     const std::vector<WirePoint>& points = model.getWirePoints();
@@ -12,6 +183,15 @@ void calcWirePaths(const Model& model, Data& data) {
     }
     for (int w = 0; w < model.getNumWires(); ++w) {
         const Wire& wire = model.getWire(w);
+        if (!wire.isPolyline()) {
+            for (const WirePointMotion& m : wire.motions) {
+                const std::size_t k = static_cast<std::size_t>(wire.firstPoint + m.point);
+                const std::size_t b = static_cast<std::size_t>(points[k].link);
+                data.p_GP[k] = data.p_GB[b] + data.R_GB[b] * calcWirePointLocation(model, wire, m.point, data.q);
+            }
+            calcGeneralWirePath(model, data, w);
+            continue;
+        }
         const std::size_t first = static_cast<std::size_t>(wire.firstPoint);
         const std::size_t last = first + static_cast<std::size_t>(wire.numPoints) - 1;
         double length = 0;
@@ -39,8 +219,26 @@ void calcWireSpeeds(const Model& model, Data& data) {
     for (int w = 0; w < model.getNumWires(); ++w) {
         const Wire& wire = model.getWire(w);
         double speed = 0;
-        for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k)
-            speed += data.dLdp_GP[static_cast<std::size_t>(k)].dot(data.v_GP[static_cast<std::size_t>(k)]);
+        if (wire.isPolyline()) {
+            for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k)
+                speed += data.dLdp_GP[static_cast<std::size_t>(k)].dot(data.v_GP[static_cast<std::size_t>(k)]);
+            data.wireSpeed[w] = speed;
+            continue;
+        }
+        // A moving point also moves in its link: R_GB dp_B/dq qdot, with qdot = u for its coordinate.
+        for (const WirePointMotion& m : wire.motions) {
+            const std::size_t k = static_cast<std::size_t>(wire.firstPoint + m.point);
+            const std::size_t b = static_cast<std::size_t>(points[k].link);
+            data.v_GP[k] += data.R_GB[b].col(m.axis) * (calcWirePointMotionRate(model, m, data.q) * data.u[m.u]);
+        }
+        const PathPoint* path = data.wirePath.data() + data.wirePathStart[static_cast<std::size_t>(w)];
+        for (int i = 0; i < data.wirePathSize[static_cast<std::size_t>(w)]; ++i) {
+            const PathPoint& p = path[i];
+            const std::size_t b = static_cast<std::size_t>(p.link);
+            const Eigen::Vector3d v_G = p.point >= 0 ? data.v_GP[static_cast<std::size_t>(wire.firstPoint + p.point)]
+                                                     : Eigen::Vector3d(data.v_GB[b] + data.w_GB[b].cross(p.p_G - data.p_GB[b]));
+            speed += p.dLdp_G.dot(v_G);
+        }
         data.wireSpeed[w] = speed;
     }
 }

@@ -1,26 +1,228 @@
 #include "sinew/io/storage_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <map>
+#include <optional>
+#include <set>
 #include <sstream>
 
 #include "sinew/core/error.hpp"
 
 namespace sinew {
+namespace {
+
+const char* const kBlanks = " \t\r";
+
+std::string trimRight(const std::string& text) {
+    const std::size_t end = text.find_last_not_of(kBlanks);
+    return end == std::string::npos ? std::string() : text.substr(0, end + 1);
+}
+
+std::string trim(const std::string& text) {
+    const std::string right = trimRight(text);
+    const std::size_t begin = right.find_first_not_of(kBlanks);
+    return begin == std::string::npos ? std::string() : right.substr(begin);
+}
+
+// The cells of a header or data line: tab-separated when the line has a tab (OpenSim's own files; a cell
+// may then be empty), else separated by runs of blanks (hand-written .mot files). Empty cells at the end
+// of the line (trailing tabs) are dropped.
+std::vector<std::string> splitCells(const std::string& line) {
+    std::vector<std::string> cells;
+    if (line.find('\t') != std::string::npos) {
+        std::istringstream fields(line);
+        std::string cell;
+        while (std::getline(fields, cell, '\t')) cells.push_back(trim(cell));
+        while (!cells.empty() && cells.back().empty()) cells.pop_back();
+    } else {
+        std::istringstream fields(line);
+        std::string cell;
+        while (fields >> cell) cells.push_back(cell);
+    }
+    return cells;
+}
+
+// Reads one OpenSim storage file, turning every problem into an Error at "file:line".
+class StorageReader {
+public:
+    explicit StorageReader(std::string path) : path_(std::move(path)), in_(path_) {
+        if (!in_) throw Error(path_ + ": cannot open for reading");
+    }
+
+    StorageTable read() {
+        readHeader();
+        readLabels();
+        readRows();
+        if (nRows_ && *nRows_ != static_cast<long>(table_.rows.size()))
+            fail(nRowsLine_, "the header says nRows=" + std::to_string(*nRows_) + " but the table has " +
+                                 std::to_string(table_.rows.size()) + " rows");
+        return std::move(table_);
+    }
+
+private:
+    std::string path_;
+    std::ifstream in_;
+    int lineNumber_ = 0;
+    StorageTable table_;
+    std::optional<long> nRows_, nColumns_;
+    int nRowsLine_ = 0, nColumnsLine_ = 0;
+
+    [[noreturn]] void fail(int line, const std::string& message) const {
+        throw Error(path_ + ":" + std::to_string(line) + ": " + message);
+    }
+
+    bool nextLine(std::string& line) {
+        if (!std::getline(in_, line)) return false;
+        ++lineNumber_;
+        line = trimRight(line);
+        return true;
+    }
+
+    long readCount(const std::string& key, const std::string& value, long minimum) const {
+        char* end = nullptr;
+        const long count = std::strtol(value.c_str(), &end, 10);
+        if (value.empty() || end != value.c_str() + value.size() || count < minimum)
+            fail(lineNumber_, key + "='" + value + "' is not an integer >= " + std::to_string(minimum));
+        return count;
+    }
+
+    void readHeader() {
+        std::string line;
+        while (nextLine(line)) {
+            if (trim(line) == "endheader") return;
+            const std::size_t equals = line.find('=');
+            if (equals == std::string::npos) {
+                if (lineNumber_ == 1)
+                    table_.name = line;
+                else
+                    table_.header.push_back(line);
+                continue;
+            }
+            const std::string key = trim(line.substr(0, equals));
+            const std::string value = trim(line.substr(equals + 1));
+            if (key == "version") {
+                readCount(key, value, 1);
+            } else if (key == "nRows") {
+                nRows_ = readCount(key, value, 0);
+                nRowsLine_ = lineNumber_;
+            } else if (key == "nColumns") {
+                nColumns_ = readCount(key, value, 1);
+                nColumnsLine_ = lineNumber_;
+            } else if (key == "inDegrees") {
+                if (value != "yes" && value != "no") fail(lineNumber_, "inDegrees='" + value + "', expected yes or no");
+                table_.inDegrees = value == "yes";
+            } else {
+                if (key == "DataType" && value != "double")
+                    fail(lineNumber_, "DataType=" + value + ": only tables of plain numbers (double) are read");
+                table_.header.push_back(line);
+            }
+        }
+        throw Error(path_ + ":" + std::to_string(lineNumber_) +
+                    ": reached the end without an 'endheader' line; not an OpenSim storage file");
+    }
+
+    void readLabels() {
+        std::string line;
+        do {
+            if (!nextLine(line)) fail(lineNumber_ + 1, "missing column labels after 'endheader'");
+        } while (trim(line).empty());
+        std::vector<std::string> labels = splitCells(line);
+        if (labels.front() != "time") fail(lineNumber_, "first column must be 'time', got '" + labels.front() + "'");
+        for (std::size_t i = 1; i < labels.size(); ++i)
+            if (labels[i].empty()) fail(lineNumber_, "column " + std::to_string(i + 1) + " has an empty label");
+        if (nColumns_ && *nColumns_ != static_cast<long>(labels.size()))
+            fail(lineNumber_, std::to_string(labels.size()) + " column labels (time included) but line " +
+                                  std::to_string(nColumnsLine_) + " says nColumns=" + std::to_string(*nColumns_));
+        table_.columns.assign(labels.begin() + 1, labels.end());
+        table_.where = path_ + ":" + std::to_string(lineNumber_);
+    }
+
+    std::string describeColumn(std::size_t cell) const {
+        if (cell == 0) return "column 1 'time'";
+        if (cell <= table_.columns.size())
+            return "column " + std::to_string(cell + 1) + " '" + table_.columns[cell - 1] + "'";
+        return "column " + std::to_string(cell + 1) + " (beyond the " + std::to_string(table_.columns.size() + 1) +
+               " labels)";
+    }
+
+    void readRows() {
+        std::string line;
+        while (nextLine(line)) {
+            if (trim(line).empty()) continue;
+            const std::vector<std::string> cells = splitCells(line);
+            std::vector<double> values;
+            values.reserve(cells.size());
+            for (std::size_t c = 0; c < cells.size(); ++c) {
+                const std::string& cell = cells[c];
+                if (cell.empty()) fail(lineNumber_, "empty cell in " + describeColumn(c));
+                // strtod, unlike stod, accepts the subnormal numbers the writer can produce.
+                char* end = nullptr;
+                const double value = std::strtod(cell.c_str(), &end);
+                if (end != cell.c_str() + cell.size())
+                    fail(lineNumber_, "'" + cell + "' is not a number (" + describeColumn(c) + ")");
+                if (!std::isfinite(value))
+                    fail(lineNumber_, "'" + cell + "' is not a finite number (" + describeColumn(c) + ")");
+                values.push_back(value);
+            }
+            const std::size_t expected = table_.columns.size() + 1;
+            if (values.size() != expected)
+                fail(lineNumber_, std::to_string(values.size()) + " values, expected " + std::to_string(expected) +
+                                      (values.size() < expected ? "; the first missing is " : "; the first extra is ") +
+                                      describeColumn(std::min(values.size(), expected)));
+            if (!table_.times.empty() && !(values.front() > table_.times.back()))
+                fail(lineNumber_, "time " + cells.front() + " does not increase (the row before is at " +
+                                      std::to_string(table_.times.back()) + ")");
+            table_.times.push_back(values.front());
+            table_.rows.emplace_back(values.begin() + 1, values.end());
+        }
+    }
+};
+
+// A header text the reader would not give back unchanged.
+void checkHeaderText(const std::string& text, const std::string& what, const std::string& path) {
+    if (text.find_first_of("\n\r") != std::string::npos || trimRight(text) != text || trim(text) == "endheader")
+        throw Error(path + ": the " + what + " '" + text +
+                    "' cannot be written (it holds a line break, ends in blanks or is 'endheader')");
+}
+
+}  // namespace
 
 void writeStorageFile(const StorageTable& table, const std::string& path) {
-    std::ofstream out(path);
-    if (!out) throw Error(path + ": cannot open for writing");
-    out << table.name << "\nversion=1\nnRows=" << table.rows.size() << "\nnColumns=" << table.columns.size() + 1
-        << "\ninDegrees=" << (table.inDegrees ? "yes" : "no") << "\nendheader\ntime";
-    for (const std::string& column : table.columns) out << '\t' << column;
-    out << '\n' << std::setprecision(17);
+    // Everything is checked before the file is opened, so a refused table leaves no half-written file.
+    checkHeaderText(table.name, "name", path);
+    if (table.name.find('=') != std::string::npos)
+        throw Error(path + ": the name '" + table.name + "' cannot be written: a first line with '=' reads as metadata");
+    for (const std::string& line : table.header) checkHeaderText(line, "header line", path);
+    for (const std::string& column : table.columns)
+        if (column.empty() || column.find_first_of("\t\n\r") != std::string::npos || trim(column) != column)
+            throw Error(path + ": the column label '" + column + "' is empty or holds a tab, line break or edge blank");
+    if (table.times.size() != table.rows.size())
+        throw Error(path + ": " + std::to_string(table.times.size()) + " times for " +
+                    std::to_string(table.rows.size()) + " rows");
     for (std::size_t i = 0; i < table.rows.size(); ++i) {
         if (table.rows[i].size() != table.columns.size())
             throw Error(path + ": row " + std::to_string(i) + " has " + std::to_string(table.rows[i].size()) +
                         " values for " + std::to_string(table.columns.size()) + " columns");
+        if (!std::isfinite(table.times[i])) throw Error(path + ": row " + std::to_string(i) + " has a non-finite time");
+        for (std::size_t c = 0; c < table.columns.size(); ++c)
+            if (!std::isfinite(table.rows[i][c]))
+                throw Error(path + ": row " + std::to_string(i) + ", column '" + table.columns[c] +
+                            "' is not finite");
+    }
+
+    std::ofstream out(path);
+    if (!out) throw Error(path + ": cannot open for writing");
+    out << table.name << "\nversion=1\nnRows=" << table.rows.size() << "\nnColumns=" << table.columns.size() + 1
+        << "\ninDegrees=" << (table.inDegrees ? "yes" : "no") << '\n';
+    for (const std::string& line : table.header) out << line << '\n';
+    out << "endheader\ntime";
+    for (const std::string& column : table.columns) out << '\t' << column;
+    out << '\n' << std::setprecision(17);
+    for (std::size_t i = 0; i < table.rows.size(); ++i) {
         out << table.times[i];
         for (double value : table.rows[i]) out << '\t' << value;
         out << '\n';
@@ -28,57 +230,38 @@ void writeStorageFile(const StorageTable& table, const std::string& path) {
     if (!out) throw Error(path + ": write failed");
 }
 
-StorageTable readStorageFile(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open for reading");
-    StorageTable table;
-    std::string line;
-    int lineNumber = 0;
-    bool sawEnd = false;
-    while (std::getline(in, line)) {
-        ++lineNumber;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (line == "endheader") {
-            sawEnd = true;
-            break;
+StorageTable readStorageFile(const std::string& path) { return StorageReader(path).read(); }
+
+std::vector<int> matchStorageColumns(const StorageTable& table, const std::vector<std::string>& expected,
+                                     ExtraColumns extra) {
+    std::map<std::string, std::vector<int>> positions;
+    for (std::size_t c = 0; c < table.columns.size(); ++c) positions[table.columns[c]].push_back(static_cast<int>(c));
+    std::vector<int> indices;
+    std::string missing, duplicated, unexpected;
+    auto append = [](std::string& list, const std::string& item) { list += (list.empty() ? "" : ", ") + item; };
+    for (const std::string& name : expected) {
+        const auto found = positions.find(name);
+        if (found == positions.end()) {
+            append(missing, "'" + name + "'");
+            indices.push_back(-1);
+            continue;
         }
-        if (lineNumber == 1) table.name = line;
-        if (line.rfind("inDegrees=", 0) == 0) table.inDegrees = line.substr(10) == "yes";
+        if (found->second.size() > 1)
+            append(duplicated, "'" + name + "' (" + std::to_string(found->second.size()) + " times)");
+        indices.push_back(found->second.front());
     }
-    if (!sawEnd)
-        throw Error(path + ":" + std::to_string(lineNumber) + ": reached the end without an 'endheader' line; not an "
-                    "OpenSim storage file");
-    if (!std::getline(in, line)) throw Error(path + ":" + std::to_string(lineNumber + 1) + ": missing column labels");
-    ++lineNumber;
-    {
-        std::istringstream labels(line);
-        std::string label;
-        std::getline(labels, label, '\t');
-        if (label != "time")
-            throw Error(path + ":" + std::to_string(lineNumber) + ": first column must be 'time', got '" + label + "'");
-        while (std::getline(labels, label, '\t')) table.columns.push_back(label);
+    if (extra == ExtraColumns::Refuse) {
+        const std::set<std::string> wanted(expected.begin(), expected.end());
+        for (const std::string& column : table.columns)
+            if (!wanted.count(column)) append(unexpected, "'" + column + "'");
     }
-    while (std::getline(in, line)) {
-        ++lineNumber;
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-        std::istringstream fields(line);
-        std::vector<double> values;
-        std::string field;
-        while (fields >> field) {
-            // strtod, unlike stod, accepts the subnormal numbers the writer can produce.
-            char* end = nullptr;
-            const double value = std::strtod(field.c_str(), &end);
-            if (end != field.c_str() + field.size())
-                throw Error(path + ":" + std::to_string(lineNumber) + ": '" + field + "' is not a number");
-            values.push_back(value);
-        }
-        if (values.size() != table.columns.size() + 1)
-            throw Error(path + ":" + std::to_string(lineNumber) + ": " + std::to_string(values.size()) +
-                        " values, expected " + std::to_string(table.columns.size() + 1));
-        table.times.push_back(values.front());
-        table.rows.emplace_back(values.begin() + 1, values.end());
-    }
-    return table;
+    if (missing.empty() && duplicated.empty() && unexpected.empty()) return indices;
+    std::string message = (table.where.empty() ? "storage table '" + table.name + "'" : table.where) +
+                          ": the columns do not match the " + std::to_string(expected.size()) + " expected";
+    if (!missing.empty()) message += "; missing " + missing;
+    if (!duplicated.empty()) message += "; duplicated " + duplicated;
+    if (!unexpected.empty()) message += "; not expected " + unexpected;
+    throw Error(message);
 }
 
 }  // namespace sinew

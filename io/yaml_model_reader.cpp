@@ -1,7 +1,9 @@
 #include <yaml-cpp/yaml.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -19,7 +21,8 @@ public:
 
     Model read(const YAML::Node& root) {
         if (!root.IsMap()) fail(root, "a model file is a mapping with keys sinew_model, name, links, joints, ...");
-        requireKeys(root, "model", {"sinew_model", "name", "gravity", "links", "joints", "virtual_links", "loops", "wires"});
+        requireKeys(root, "model", {"sinew_model", "name", "gravity", "links", "joints", "virtual_links", "loops", "wrap_objects",
+                                    "wires"});
         const YAML::Node version = root["sinew_model"];
         if (!version) fail(root, "missing 'sinew_model: " + std::to_string(kModelFormatVersion) + "' (format version)");
         if (readInt(version, "sinew_model") != kModelFormatVersion)
@@ -31,6 +34,7 @@ public:
         for (const YAML::Node& node : sequence(root, "joints")) builder.addJoint(readJoint(node));
         for (const YAML::Node& node : sequence(root, "virtual_links")) builder.addVirtualLink(readVirtualLink(node));
         for (const YAML::Node& node : sequence(root, "loops")) builder.addLoop(readLoop(node));
+        for (const YAML::Node& node : sequence(root, "wrap_objects")) builder.addWrapObject(readWrapObject(node));
         for (const YAML::Node& node : sequence(root, "wires")) builder.addWire(readWire(node));
         return builder.build();
     }
@@ -127,7 +131,8 @@ private:
 
     JointSpec readJoint(const YAML::Node& node) const {
         requireKeys(node, "joint", {"name", "type", "parent", "child", "parent_point", "child_point", "axis",
-                                    "initial_rotation", "initial_angle", "initial_position"});
+                                    "initial_rotation", "initial_angle", "initial_position", "parent_orientation",
+                                    "child_orientation", "coordinates", "transform"});
         JointSpec joint;
         joint.where = where(node);
         joint.name = readString(field(node, "name", "joint"), "name");
@@ -138,7 +143,8 @@ private:
         else if (typeName == "ball") joint.type = JointType::Ball;
         else if (typeName == "pin") joint.type = JointType::Pin;
         else if (typeName == "weld") joint.type = JointType::Weld;
-        else fail(type, owner + ": unknown joint type '" + typeName + "' (expected free, ball, pin or weld)");
+        else if (typeName == "custom") joint.type = JointType::Custom;
+        else fail(type, owner + ": unknown joint type '" + typeName + "' (expected free, ball, pin, weld or custom)");
         joint.parent = readString(field(node, "parent", owner), "parent");
         joint.child = readString(field(node, "child", owner), "child");
         if (node["parent_point"]) joint.p_PF = readVector3(node["parent_point"], "parent_point");
@@ -147,7 +153,103 @@ private:
         if (node["initial_rotation"]) joint.initialRotation = readVector3(node["initial_rotation"], "initial_rotation");
         if (node["initial_angle"]) joint.initialAngle = readNumber(node["initial_angle"], "initial_angle");
         if (node["initial_position"]) joint.initialPosition = readVector3(node["initial_position"], "initial_position");
+        if (node["parent_orientation"]) joint.R_PF = readOrientation(node["parent_orientation"], "parent_orientation");
+        if (node["child_orientation"]) joint.R_BM = readOrientation(node["child_orientation"], "child_orientation");
+        for (const YAML::Node& item : sequence(node, "coordinates")) joint.coordinates.push_back(readCoordinate(item, owner));
+        if (joint.type == JointType::Custom) readTransform(node, owner, joint);
+        else if (node["transform"]) fail(node["transform"], owner + ": only custom joints take a transform");
         return joint;
+    }
+
+    // Body-fixed x-y-z angles in rad (OpenSim's frame orientation), or a rotation matrix as 9 numbers row by row.
+    Eigen::Matrix3d readOrientation(const YAML::Node& node, const std::string& key) const {
+        const std::vector<double> v = readNumbers(node, key);
+        if (v.size() == 3)
+            return (Eigen::AngleAxisd(v[0], Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(v[1], Eigen::Vector3d::UnitY()) *
+                    Eigen::AngleAxisd(v[2], Eigen::Vector3d::UnitZ())).toRotationMatrix();
+        if (v.size() != 9 || !node.IsSequence())
+            fail(node, "field '" + key + "' must be 3 body-fixed x-y-z angles (rad) or a rotation matrix as 9 numbers, "
+                       "row by row");
+        return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(v.data());
+    }
+
+    bool readBool(const YAML::Node& node, const std::string& key) const {
+        bool value = false;
+        if (!node.IsScalar() || !YAML::convert<bool>::decode(node, value))
+            fail(node, "field '" + key + "' must be true or false");
+        return value;
+    }
+
+    CoordinateSpec readCoordinate(const YAML::Node& node, const std::string& owner) const {
+        requireKeys(node, "coordinate", {"name", "default", "range", "clamped", "locked"});
+        CoordinateSpec coordinate;
+        coordinate.where = where(node);
+        coordinate.name = readString(field(node, "name", owner + " coordinate"), "name");
+        if (node["default"]) coordinate.defaultValue = readNumber(node["default"], "default");
+        if (node["range"]) {
+            const std::vector<double> range = readNumbers(node["range"], "range");
+            if (range.size() != 2 || !node["range"].IsSequence()) fail(node["range"], "field 'range' must be [min, max]");
+            coordinate.rangeMin = range[0];
+            coordinate.rangeMax = range[1];
+        }
+        if (node["clamped"]) coordinate.clamped = readBool(node["clamped"], "clamped");
+        if (node["locked"]) coordinate.locked = readBool(node["locked"], "locked");
+        return coordinate;
+    }
+
+    // The six transform axes; an axis left out is OpenSim's default (x, y, z in turn; no coordinate; zero).
+    void readTransform(const YAML::Node& joint, const std::string& owner, JointSpec& spec) const {
+        static const char* const names[] = {"rotation1", "rotation2", "rotation3", "translation1", "translation2",
+                                            "translation3"};
+        const YAML::Node transform = field(joint, "transform", owner);
+        if (!transform.IsMap()) fail(transform, owner + ": field 'transform' must be a mapping of rotation1..translation3");
+        requireKeys(transform, owner + " transform", {names[0], names[1], names[2], names[3], names[4], names[5]});
+        for (int k = 0; k < 6; ++k) {
+            TransformAxisSpec axis;
+            axis.axis = Eigen::Vector3d::Unit(k % 3);
+            const YAML::Node node = transform[names[k]];
+            if (node) {
+                const std::string label = owner + " " + names[k];
+                if (!node.IsMap()) fail(node, label + " must be a mapping {axis, coordinate, function}");
+                requireKeys(node, label, {"axis", "coordinate", "function"});
+                axis.axis = readVector3(field(node, "axis", label), "axis");
+                if (node["coordinate"]) axis.coordinate = readString(node["coordinate"], "coordinate");
+                if (node["function"]) axis.function = readFunction(node["function"], label);
+            }
+            spec.transformAxes.push_back(axis);
+        }
+    }
+
+    Function readFunction(const YAML::Node& node, const std::string& owner) const {
+        if (!node.IsMap()) fail(node, owner + ": a function is a mapping with a 'type'");
+        const std::string type = readString(field(node, "type", owner + " function"), "type");
+        auto numbers = [&](const char* key) { return readNumbers(field(node, key, owner + " function"), key); };
+        try {
+            std::optional<Function> f;
+            if (type == "constant") {
+                requireKeys(node, owner + " constant function", {"type", "value", "scale"});
+                f = Function::constant(readNumber(field(node, "value", owner + " function"), "value"));
+            } else if (type == "linear" || type == "polynomial") {
+                requireKeys(node, owner + " " + type + " function", {"type", "coefficients", "scale"});
+                const std::vector<double> c = numbers("coefficients");
+                if (type == "linear" && c.size() != 2)
+                    fail(node["coefficients"], owner + ": a linear function's coefficients are [slope, intercept]");
+                f = type == "linear" ? Function::linear(c[0], c[1]) : Function::polynomial(c);
+            } else if (type == "simm_spline" || type == "natural_cubic_spline") {
+                requireKeys(node, owner + " " + type, {"type", "x", "y", "scale"});
+                f = type == "simm_spline" ? Function::simmSpline(numbers("x"), numbers("y"))
+                                          : Function::naturalCubicSpline(numbers("x"), numbers("y"));
+            } else {
+                fail(node["type"], owner + ": unknown function type '" + type + "' (expected constant, linear, polynomial, "
+                                   "simm_spline or natural_cubic_spline)");
+            }
+            if (node["scale"]) f = f->multipliedBy(readNumber(node["scale"], "scale"));
+            return *f;
+        } catch (const ModelError&) {
+            throw;
+        } catch (const Error& e) {
+            fail(node, owner + ": " + e.what());
+        }
     }
 
     VirtualLinkSpec readVirtualLink(const YAML::Node& node) const {
@@ -173,8 +275,92 @@ private:
         return loop;
     }
 
+    // {link, at} plus, for OpenSim's path points, active_when: {coordinate, range} and moving: {x|y|z:
+    // {coordinate, function}} (the moving components' entries of `at` are not read).
+    WirePointSpec readWirePoint(const YAML::Node& node, const std::string& owner) const {
+        if (!node.IsMap()) fail(node, owner + ": each point is a mapping {link: NAME, at: [x, y, z]}");
+        requireKeys(node, "wire point", {"link", "at", "active_when", "moving"});
+        const std::string label = owner + " point";
+        WirePointSpec point{readString(field(node, "link", label), "link"), readVector3(field(node, "at", label), "at"),
+                            where(node)};
+        if (const YAML::Node when = node["active_when"]) {
+            if (!when.IsMap()) fail(when, label + ": active_when is a mapping {coordinate, range}");
+            requireKeys(when, "active_when", {"coordinate", "range"});
+            const YAML::Node range = field(when, "range", label + " active_when");
+            const std::vector<double> r = readNumbers(range, "range");
+            if (r.size() != 2 || !range.IsSequence()) fail(range, label + ": active_when range must be [min, max]");
+            point.condition = WirePointConditionSpec{readString(field(when, "coordinate", label + " active_when"), "coordinate"),
+                                                     r[0], r[1]};
+        }
+        if (const YAML::Node moving = node["moving"]) {
+            if (!moving.IsMap()) fail(moving, label + ": moving is a mapping of x, y, z to {coordinate, function}");
+            requireKeys(moving, "moving", {"x", "y", "z"});
+            for (int axis = 0; axis < 3; ++axis) {
+                const std::string key(1, static_cast<char>('x' + axis));
+                const YAML::Node component = moving[key];
+                if (!component) continue;
+                const std::string componentLabel = label + " moving " + key;
+                if (!component.IsMap()) fail(component, componentLabel + " must be a mapping {coordinate, function}");
+                requireKeys(component, "moving " + key, {"coordinate", "function"});
+                point.motions.push_back({axis, readString(field(component, "coordinate", componentLabel), "coordinate"),
+                                         readFunction(field(component, "function", componentLabel), componentLabel)});
+            }
+        }
+        return point;
+    }
+
+    WireWrapSpec readWireWrap(const YAML::Node& node, const std::string& owner) const {
+        requireKeys(node, "wrap", {"object", "range", "method"});
+        WireWrapSpec wrap;
+        wrap.where = where(node);
+        wrap.object = readString(field(node, "object", owner + " wrap"), "object");
+        if (const YAML::Node range = node["range"]) {
+            const std::vector<double> r = readNumbers(range, "range");
+            if (r.size() != 2 || !range.IsSequence()) fail(range, owner + ": wrap range must be [first, last] point");
+            wrap.firstPoint = readInt(range[0], "range");
+            wrap.lastPoint = readInt(range[1], "range");
+        }
+        if (const YAML::Node method = node["method"]) {
+            const std::string name = readString(method, "method");
+            if (name == "hybrid") wrap.method = WrapMethod::Hybrid;
+            else if (name == "midpoint") wrap.method = WrapMethod::Midpoint;
+            else if (name == "axial") wrap.method = WrapMethod::Axial;
+            else fail(method, owner + ": unknown wrap method '" + name + "' (expected hybrid, midpoint or axial)");
+        }
+        return wrap;
+    }
+
+    WrapObjectSpec readWrapObject(const YAML::Node& node) const {
+        requireKeys(node, "wrap object", {"name", "type", "link", "rotation", "translation", "radius", "length", "radii",
+                                          "quadrant"});
+        WrapObjectSpec object;
+        object.where = where(node);
+        object.name = readString(field(node, "name", "wrap object"), "name");
+        const std::string owner = "wrap object '" + object.name + "'";
+        const YAML::Node type = field(node, "type", owner);
+        const std::string typeName = readString(type, "type");
+        auto only = [&](const char* key, bool allowed) {
+            if (node[key] && !allowed) fail(node[key], owner + ": a " + typeName + " takes no '" + key + "'");
+        };
+        if (typeName == "sphere") object.shape = WrapShape::Sphere;
+        else if (typeName == "cylinder") object.shape = WrapShape::Cylinder;
+        else if (typeName == "ellipsoid") object.shape = WrapShape::Ellipsoid;
+        else fail(type, owner + ": unknown wrap object type '" + typeName + "' (expected sphere, cylinder or ellipsoid)");
+        object.link = readString(field(node, "link", owner), "link");
+        if (node["rotation"]) object.xyzBodyRotation = readVector3(node["rotation"], "rotation");
+        if (node["translation"]) object.translation = readVector3(node["translation"], "translation");
+        only("radius", object.shape != WrapShape::Ellipsoid);
+        only("length", object.shape == WrapShape::Cylinder);
+        only("radii", object.shape == WrapShape::Ellipsoid);
+        if (object.shape == WrapShape::Ellipsoid) object.radii = readVector3(field(node, "radii", owner), "radii");
+        else object.radius = readNumber(field(node, "radius", owner), "radius");
+        if (object.shape == WrapShape::Cylinder) object.length = readNumber(field(node, "length", owner), "length");
+        if (node["quadrant"]) object.quadrant = readString(node["quadrant"], "quadrant");
+        return object;
+    }
+
     WireSpec readWire(const YAML::Node& node) const {
-        requireKeys(node, "wire", {"name", "kind", "points", "force_law"});
+        requireKeys(node, "wire", {"name", "kind", "points", "wraps", "force_law"});
         WireSpec wire;
         wire.where = where(node);
         wire.name = readString(field(node, "name", "wire"), "name");
@@ -188,12 +374,8 @@ private:
         else fail(kind, owner + ": unknown kind '" + kindName + "' (expected muscle, tendon, ligament or cartilage)");
         const YAML::Node points = field(node, "points", owner);
         if (!points.IsSequence()) fail(points, owner + ": field 'points' must be a list");
-        for (const YAML::Node& point : points) {
-            if (!point.IsMap()) fail(point, owner + ": each point is a mapping {link: NAME, at: [x, y, z]}");
-            requireKeys(point, "wire point", {"link", "at"});
-            wire.points.push_back({readString(field(point, "link", owner + " point"), "link"),
-                                   readVector3(field(point, "at", owner + " point"), "at"), where(point)});
-        }
+        for (const YAML::Node& point : points) wire.points.push_back(readWirePoint(point, owner));
+        for (const YAML::Node& wrap : sequence(node, "wraps")) wire.wraps.push_back(readWireWrap(wrap, owner));
         const YAML::Node law = field(node, "force_law", owner);
         if (!law.IsMap()) fail(law, owner + ": field 'force_law' must be a mapping with a 'type'");
         for (const auto& entry : law) {

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <fstream>
+#include <limits>
 
 #include "sinew/core/error.hpp"
 #include "sinew/io/model_file.hpp"
@@ -14,6 +15,114 @@ void emitVector(YAML::Emitter& out, const Eigen::Vector3d& v) {
 }
 
 std::string linkName(const Model& model, int link) { return link == kGround ? "ground" : model.getLink(link).name; }
+
+void emitRotation(YAML::Emitter& out, const Eigen::Matrix3d& R) {
+    out << YAML::Flow << YAML::BeginSeq;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) out << R(r, c);
+    out << YAML::EndSeq;
+}
+
+void emitFunction(YAML::Emitter& out, const Function& f) {
+    static const char* const typeNames[] = {"constant", "linear", "simm_spline", "natural_cubic_spline", "polynomial"};
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "type" << YAML::Value << typeNames[static_cast<int>(f.getType())];
+    auto emitList = [&](const char* key, const std::vector<double>& values) {
+        out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+        for (double v : values) out << v;
+        out << YAML::EndSeq;
+    };
+    switch (f.getType()) {
+        case Function::Type::Constant: out << YAML::Key << "value" << YAML::Value << f.getCoefficients()[0]; break;
+        case Function::Type::Linear:
+        case Function::Type::Polynomial: emitList("coefficients", f.getCoefficients()); break;
+        case Function::Type::SimmSpline:
+        case Function::Type::NaturalCubicSpline:
+            emitList("x", f.getX());
+            emitList("y", f.getY());
+            break;
+    }
+    if (f.getScale() != 1) out << YAML::Key << "scale" << YAML::Value << f.getScale();
+    out << YAML::EndMap;
+}
+
+void emitWrapObject(YAML::Emitter& out, const Model& model, const WrapObject& object) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << object.name << YAML::Key << "type"
+        << YAML::Value << toString(object.shape) << YAML::Key << "link" << YAML::Value << linkName(model, object.link)
+        << YAML::Key << "rotation" << YAML::Value;
+    emitVector(out, object.xyzBodyRotation);
+    out << YAML::Key << "translation" << YAML::Value;
+    emitVector(out, object.p_BW);
+    if (object.shape == WrapShape::Ellipsoid) {
+        out << YAML::Key << "radii" << YAML::Value;
+        emitVector(out, object.radii);
+    } else {
+        out << YAML::Key << "radius" << YAML::Value << object.radius;
+    }
+    if (object.shape == WrapShape::Cylinder) out << YAML::Key << "length" << YAML::Value << object.length;
+    const std::string quadrant = object.quadrantSign == 0 ? "all"
+                                                          : std::string(object.quadrantSign > 0 ? "+" : "-") +
+                                                                static_cast<char>('x' + object.quadrantAxis);
+    out << YAML::Key << "quadrant" << YAML::Value << quadrant << YAML::EndMap;
+}
+
+// A wire point with, for OpenSim's path points, its active range and its moving components.
+void emitWirePoint(YAML::Emitter& out, const Model& model, const Wire& wire, int k) {
+    const WirePoint& point = model.getWirePoints()[static_cast<std::size_t>(wire.firstPoint + k)];
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "link" << YAML::Value << linkName(model, point.link) << YAML::Key
+        << "at" << YAML::Value;
+    emitVector(out, point.p_B);
+    const std::vector<std::string> coordinates = getCoordinateNames(model);
+    for (const WirePointCondition& c : wire.conditions) {
+        if (c.point != k) continue;
+        out << YAML::Key << "active_when" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "coordinate"
+            << YAML::Value << coordinates[static_cast<std::size_t>(c.q)] << YAML::Key << "range" << YAML::Value
+            << YAML::Flow << YAML::BeginSeq << c.min << c.max << YAML::EndSeq << YAML::EndMap;
+    }
+    bool moving = false;
+    for (const WirePointMotion& m : wire.motions) {
+        if (m.point != k) continue;
+        if (!moving) out << YAML::Key << "moving" << YAML::Value << YAML::Flow << YAML::BeginMap;
+        moving = true;
+        out << YAML::Key << std::string(1, static_cast<char>('x' + m.axis)) << YAML::Value << YAML::Flow << YAML::BeginMap
+            << YAML::Key << "coordinate" << YAML::Value << coordinates[static_cast<std::size_t>(m.q)] << YAML::Key
+            << "function" << YAML::Value;
+        emitFunction(out, m.function);
+        out << YAML::EndMap;
+    }
+    if (moving) out << YAML::EndMap;
+    out << YAML::EndMap;
+}
+
+// A custom joint's coordinates and its six transform axes.
+void emitCustomJoint(YAML::Emitter& out, const Model& model, const Joint& joint) {
+    static const char* const axisNames[] = {"rotation1", "rotation2", "rotation3", "translation1", "translation2",
+                                            "translation3"};
+    const auto& coordinates = model.getCoordinates();
+    auto coordinate = [&](int k) -> const Coordinate& { return coordinates[static_cast<std::size_t>(joint.qStart + k)]; };
+    out << YAML::Key << "coordinates" << YAML::Value << YAML::BeginSeq;
+    for (int k = 0; k < joint.nq; ++k) {
+        const Coordinate& c = coordinate(k);
+        out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << c.name << YAML::Key << "default"
+            << YAML::Value << c.defaultValue;
+        if (c.rangeMin != -std::numeric_limits<double>::infinity() || c.rangeMax != std::numeric_limits<double>::infinity())
+            out << YAML::Key << "range" << YAML::Value << YAML::Flow << YAML::BeginSeq << c.rangeMin << c.rangeMax
+                << YAML::EndSeq;
+        if (c.clamped) out << YAML::Key << "clamped" << YAML::Value << true;
+        if (c.locked) out << YAML::Key << "locked" << YAML::Value << true;
+        out << YAML::EndMap;
+    }
+    out << YAML::EndSeq << YAML::Key << "transform" << YAML::Value << YAML::BeginMap;
+    for (int k = 0; k < 6; ++k) {
+        const TransformAxis& axis = joint.transformAxes[static_cast<std::size_t>(k)];
+        out << YAML::Key << axisNames[k] << YAML::Value << YAML::BeginMap << YAML::Key << "axis" << YAML::Value;
+        emitVector(out, axis.axis);
+        if (axis.coordinate != kNoCoordinate) out << YAML::Key << "coordinate" << YAML::Value << coordinate(axis.coordinate).name;
+        out << YAML::Key << "function" << YAML::Value;
+        emitFunction(out, axis.function);
+        out << YAML::EndMap;
+    }
+    out << YAML::EndMap;
+}
 
 Eigen::Vector3d rotationVector(const Eigen::VectorXd& q, int start) {
     const Eigen::AngleAxisd aa(Eigen::Quaterniond(q[start], q[start + 1], q[start + 2], q[start + 3]).normalized());
@@ -67,8 +176,20 @@ std::string writeModelText(const Model& model) {
                 out << YAML::Key << "initial_rotation" << YAML::Value;
                 emitVector(out, rotationVector(q0, joint.qStart));
                 break;
-            case JointType::Weld: break;
+            case JointType::Weld:
+            case JointType::Custom: break;
         }
+        if (joint.type == JointType::Weld || joint.type == JointType::Custom) {
+            if (!joint.R_PF.isIdentity(0)) {
+                out << YAML::Key << "parent_orientation" << YAML::Value;
+                emitRotation(out, joint.R_PF);
+            }
+            if (!joint.R_BM.isIdentity(0)) {
+                out << YAML::Key << "child_orientation" << YAML::Value;
+                emitRotation(out, joint.R_BM);
+            }
+        }
+        if (joint.type == JointType::Custom) emitCustomJoint(out, model, joint);
         out << YAML::EndMap;
     }
     out << YAML::EndSeq;
@@ -94,18 +215,27 @@ std::string writeModelText(const Model& model) {
     }
     out << YAML::EndSeq;
 
+    out << YAML::Key << "wrap_objects" << YAML::Value << YAML::BeginSeq;
+    for (const WrapObject& object : model.getWrapObjects()) emitWrapObject(out, model, object);
+    out << YAML::EndSeq;
+
     out << YAML::Key << "wires" << YAML::Value << YAML::BeginSeq;
     for (const Wire& wire : model.getWires()) {
         out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << wire.name << YAML::Key << "kind" << YAML::Value
             << toString(wire.kind) << YAML::Key << "points" << YAML::Value << YAML::BeginSeq;
-        for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
-            const WirePoint& point = model.getWirePoints()[static_cast<std::size_t>(k)];
-            out << YAML::Flow << YAML::BeginMap << YAML::Key << "link" << YAML::Value << linkName(model, point.link)
-                << YAML::Key << "at" << YAML::Value;
-            emitVector(out, point.p_B);
-            out << YAML::EndMap;
+        for (int k = 0; k < wire.numPoints; ++k) emitWirePoint(out, model, wire, k);
+        out << YAML::EndSeq;
+        if (!wire.wraps.empty()) {
+            out << YAML::Key << "wraps" << YAML::Value << YAML::BeginSeq;
+            for (const WireWrap& wrap : wire.wraps) {
+                out << YAML::Flow << YAML::BeginMap << YAML::Key << "object" << YAML::Value
+                    << model.getWrapObjects()[static_cast<std::size_t>(wrap.object)].name << YAML::Key << "range"
+                    << YAML::Value << YAML::Flow << YAML::BeginSeq << wrap.firstPoint << wrap.lastPoint << YAML::EndSeq
+                    << YAML::Key << "method" << YAML::Value << toString(wrap.method) << YAML::EndMap;
+            }
+            out << YAML::EndSeq;
         }
-        out << YAML::EndSeq << YAML::Key << "force_law" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key
+        out << YAML::Key << "force_law" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key
             << "type" << YAML::Value << wire.lawSpec.type;
         for (const auto& [name, values] : wire.lawSpec.parameters.getAll()) {
             out << YAML::Key << name << YAML::Value;

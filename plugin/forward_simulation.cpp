@@ -13,11 +13,6 @@ namespace sinew {
 
 SimulationSummary simulateForward(const Model& model, const ForwardSimulationOptions& options,
                                   const std::function<void(const SimulationFrame&)>& onFrame) {
-    for (const Link& link : model.getLinks())
-        if (link.isVirtual)
-            throw Error("model '" + model.getName() + "' has virtual link '" + link.name +
-                        "'; Simbody cannot integrate massless 6-DOF bodies, and sinew's quasi-static treatment of "
-                        "them is not implemented yet");
     if (!(options.duration > 0) || !(options.reportInterval > 0) || !(options.accuracy > 0))
         throw Error("simulation needs duration, report interval and accuracy > 0");
 
@@ -29,7 +24,7 @@ SimulationSummary simulateForward(const Model& model, const ForwardSimulationOpt
     if (options.initialSpeeds.size() > 0) {
         if (options.initialSpeeds.size() != model.getNumU())
             throw Error("initial speeds need " + std::to_string(model.getNumU()) + " values");
-        state.updU() = toSimTK(options.initialSpeeds);
+        state.updU() = toSimTK(options.initialSpeeds.head(state.getNU()));  // virtual links' speeds follow
         system.realize(state, SimTK::Stage::Velocity);
         system.projectU(state, options.accuracy * 1e-3);
     }
@@ -55,13 +50,13 @@ SimulationSummary simulateForward(const Model& model, const ForwardSimulationOpt
 
     SimulationSummary summary;
     SimulationFrame frame;
-    frame.tensions.resize(model.getNumWires());
     auto report = [&](const SimTK::State& s) {
         system.realize(s, SimTK::Stage::Dynamics);
         frame.time = s.getTime();
-        frame.q = toEigen(s.getQ());
-        frame.u = toEigen(s.getU());
-        for (int w = 0; w < model.getNumWires(); ++w) frame.tensions[w] = simbody.getWireForce(w).calcTension(s);
+        simbody.calcCoordinates(s, frame.q, frame.u);
+        frame.tensions = simbody.calcWireTensions(s);
+        if (const VirtualLinkWireForce* forks = simbody.getVirtualLinkWireForce())
+            summary.maxVirtualLinkResidual = std::max(summary.maxVirtualLinkResidual, forks->getEquilibrium().status.residual);
         summary.maxConstraintViolation = std::max(summary.maxConstraintViolation,
                                                   calcConstraintViolation(model, kinematics, frame.q, hangLink, p_GH));
         frame.kineticEnergy = system.calcKineticEnergy(s);

@@ -1,8 +1,11 @@
 #include "sinew/simbody/simbody_model.hpp"
 
+#include <algorithm>
+
 #include "sinew/core/data.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/kinematics.hpp"
+#include "sinew/simbody/custom_mobilizer.hpp"
 
 namespace sinew {
 namespace {
@@ -52,6 +55,13 @@ SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
     if (options.gravity) SimTK::Force::UniformGravity(*forces_, *matter_, toVec3(model_.getGravity()));
 
     for (int i = 0; i < model_.getNumLinks(); ++i) {
+        // A virtual link is massless, which a Simbody body cannot be: no mobilized body (and no q or u in
+        // Simbody's state; virtual links come last, so Simbody's q and u are the head of sinew's). Its wires
+        // act through the VirtualLinkWireForce below.
+        if (model_.getLink(i).isVirtual) {
+            mobilizedBodies_.emplace_back();
+            continue;
+        }
         const Joint& joint = model_.getJoint(i);
         SimTK::MobilizedBody& parent = joint.parent == kGround ? matter_->updGround()
                                                                : matter_->updMobilizedBody(mobilizedBodies_[static_cast<std::size_t>(joint.parent)]);
@@ -64,6 +74,7 @@ SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
             case JointType::Ball: index = SimTK::MobilizedBody::Ball(parent, X_PF, body, X_BM).getMobilizedBodyIndex(); break;
             case JointType::Pin: index = SimTK::MobilizedBody::Pin(parent, X_PF, body, X_BM).getMobilizedBodyIndex(); break;
             case JointType::Weld: index = SimTK::MobilizedBody::Weld(parent, X_PF, body, X_BM).getMobilizedBodyIndex(); break;
+            case JointType::Custom: index = addCustomMobilizer(parent, X_PF, body, X_BM, joint); break;
         }
         mobilizedBodies_.push_back(index);
     }
@@ -91,7 +102,21 @@ SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
     }
 
     if (options.wires) {
-        for (const Wire& wire : model_.getWires()) {
+        std::vector<char> throughVirtualLink(static_cast<std::size_t>(model_.getNumWires()), 0);
+        const auto& links = model_.getLinks();
+        if (std::any_of(links.begin(), links.end(), [](const Link& link) { return link.isVirtual; })) {
+            auto* implementation = new VirtualLinkWireForce(*matter_, model_, mobilizedBodies_);
+            SimTK::Force::Custom(*forces_, implementation);  // takes ownership
+            virtualLinkWireForce_ = implementation;
+            for (int w : implementation->getEquilibrium().wires) throughVirtualLink[static_cast<std::size_t>(w)] = 1;
+        }
+        for (int w = 0; w < model_.getNumWires(); ++w) {
+            const Wire& wire = model_.getWire(w);
+            if (throughVirtualLink[static_cast<std::size_t>(w)]) {
+                wireImplementations_.push_back(nullptr);
+                wireForces_.emplace_back();
+                continue;
+            }
             std::vector<WireForce::Station> path;
             for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
                 const WirePoint& point = model_.getWirePoints()[static_cast<std::size_t>(k)];
@@ -106,6 +131,8 @@ SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
 }
 
 const SimTK::MobilizedBody& SimbodyModel::getMobilizedBody(int link) const {
+    if (model_.getLink(link).isVirtual)
+        throw Error("link '" + model_.getLink(link).name + "' is a virtual link, which has no mobilized body");
     return matter_->getMobilizedBody(mobilizedBodies_.at(static_cast<std::size_t>(link)));
 }
 
@@ -114,11 +141,40 @@ const SimTK::Constraint::Ball& SimbodyModel::getLoopConstraint(int loop) const {
 }
 
 const SimTK::Force& SimbodyModel::getWireForceElement(int wire) const {
+    getWireForce(wire);  // refuses a wire through a virtual link
     return forces_->getForce(wireForces_.at(static_cast<std::size_t>(wire)));
 }
 
 const WireForce& SimbodyModel::getWireForce(int wire) const {
-    return *wireImplementations_.at(static_cast<std::size_t>(wire));
+    const WireForce* implementation = wireImplementations_.at(static_cast<std::size_t>(wire));
+    if (!implementation)
+        throw Error("wire '" + model_.getWire(wire).name + "' passes through a virtual link; its force is in "
+                    "getVirtualLinkWireForce()");
+    return *implementation;
+}
+
+Eigen::VectorXd SimbodyModel::calcWireTensions(const SimTK::State& state) const {
+    Eigen::VectorXd tensions = Eigen::VectorXd::Zero(model_.getNumWires());
+    if (virtualLinkWireForce_) {
+        virtualLinkWireForce_->solve(state);
+        for (int w : virtualLinkWireForce_->getEquilibrium().wires)
+            tensions[w] = virtualLinkWireForce_->getEquilibrium().tension[w];
+    }
+    for (std::size_t w = 0; w < wireImplementations_.size(); ++w)
+        if (wireImplementations_[w]) tensions[static_cast<Eigen::Index>(w)] = wireImplementations_[w]->calcTension(state);
+    return tensions;
+}
+
+void SimbodyModel::calcCoordinates(const SimTK::State& state, Eigen::VectorXd& q, Eigen::VectorXd& u) const {
+    q = model_.getDefaultQ();
+    u = Eigen::VectorXd::Zero(model_.getNumU());
+    q.head(state.getNQ()) = toEigen(state.getQ());
+    u.head(state.getNU()) = toEigen(state.getU());
+    if (virtualLinkWireForce_) {
+        virtualLinkWireForce_->solve(state);
+        getVirtualLinkCoordinates(model_, virtualLinkWireForce_->getData(), virtualLinkWireForce_->getEquilibrium(), q,
+                                  u);
+    }
 }
 
 SimTK::State SimbodyModel::makeState(const Eigen::VectorXd& q, const Eigen::VectorXd& u, SimTK::Stage stage) const {
@@ -127,8 +183,8 @@ SimTK::State SimbodyModel::makeState(const Eigen::VectorXd& q, const Eigen::Vect
                     std::to_string(model_.getNumU()) + " u, got " + std::to_string(q.size()) + " and " +
                     std::to_string(u.size()));
     SimTK::State state = system_->getDefaultState();
-    state.updQ() = toSimTK(q);
-    state.updU() = toSimTK(u);
+    state.updQ() = toSimTK(q.head(state.getNQ()));
+    state.updU() = toSimTK(u.head(state.getNU()));
     system_->realize(state, stage);
     return state;
 }

@@ -79,4 +79,61 @@ SimTK::Real WireForce::calcPotentialEnergy(const SimTK::State& state) const {
     return law_->calcPotentialEnergy(calcLength(state));
 }
 
+VirtualLinkWireForce::VirtualLinkWireForce(const SimTK::SimbodyMatterSubsystem& matter, const Model& model,
+                                           std::vector<SimTK::MobilizedBodyIndex> bodies)
+    : matter_(matter), model_(model), bodies_(std::move(bodies)), data_(model), equilibrium_(model) {
+    // The first warm start: the virtual links where the model file puts them, at rest.
+    for (int v : equilibrium_.links) {
+        const Joint& joint = model.getJoint(v);
+        const Eigen::Vector4d w_xyz = model.getDefaultQ().segment<4>(joint.qStart);
+        data_.R_GB[static_cast<std::size_t>(v)] =
+            Eigen::Quaterniond(w_xyz[0], w_xyz[1], w_xyz[2], w_xyz[3]).normalized().toRotationMatrix();
+        data_.p_GB[static_cast<std::size_t>(v)] = model.getDefaultQ().segment<3>(joint.qStart + 4);
+    }
+}
+
+const VirtualLinkEquilibriumStatus& VirtualLinkWireForce::solve(const SimTK::State& state) const {
+    const std::vector<WirePoint>& points = model_.getWirePoints();
+    for (int w : equilibrium_.wires) {
+        const Wire& wire = model_.getWire(w);
+        for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
+            const WirePoint& point = points[static_cast<std::size_t>(k)];
+            if (model_.getLink(point.link).isVirtual) continue;
+            SimTK::Vec3 p_G, v_G;
+            matter_.getMobilizedBody(bodies_[static_cast<std::size_t>(point.link)])
+                .findStationLocationAndVelocityInGround(state, SimTK::Vec3(point.p_B[0], point.p_B[1], point.p_B[2]),
+                                                        p_G, v_G);
+            data_.p_GP[static_cast<std::size_t>(k)] = Eigen::Vector3d(p_G[0], p_G[1], p_G[2]);
+            data_.v_GP[static_cast<std::size_t>(k)] = Eigen::Vector3d(v_G[0], v_G[1], v_G[2]);
+        }
+    }
+    return calcVirtualLinkEquilibrium(model_, data_, state.getTime(), equilibrium_);
+}
+
+void VirtualLinkWireForce::calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& bodyForces,
+                                     SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector&) const {
+    solve(state);
+    const std::vector<WirePoint>& points = model_.getWirePoints();
+    for (int w : equilibrium_.wires) {
+        const Wire& wire = model_.getWire(w);
+        const double tension = equilibrium_.tension[w];
+        if (tension == 0) continue;
+        for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
+            const WirePoint& point = points[static_cast<std::size_t>(k)];
+            if (model_.getLink(point.link).isVirtual) continue;
+            const Eigen::Vector3d f_G = -tension * data_.dLdp_GP[static_cast<std::size_t>(k)];
+            matter_.getMobilizedBody(bodies_[static_cast<std::size_t>(point.link)])
+                .applyForceToBodyPoint(state, SimTK::Vec3(point.p_B[0], point.p_B[1], point.p_B[2]),
+                                       SimTK::Vec3(f_G[0], f_G[1], f_G[2]), bodyForces);
+        }
+    }
+}
+
+SimTK::Real VirtualLinkWireForce::calcPotentialEnergy(const SimTK::State& state) const {
+    solve(state);
+    double energy = 0;
+    for (int w : equilibrium_.wires) energy += model_.getWire(w).law->calcPotentialEnergy(data_.wireLength[w]);
+    return energy;
+}
+
 }  // namespace sinew

@@ -151,7 +151,7 @@ TEST(ForwardSimulationSinew, ProjectsInitialSpeedsOntoTheConstraints) {
     });
 }
 
-TEST(ForwardSimulationSinew, RefusesUnknownHangLinkVirtualLinksAndBadOptions) {
+TEST(ForwardSimulationSinew, RefusesUnknownOrVirtualHangLinkAndBadOptions) {
     RandomModelOptions o;
     o.numLinks = 3;
     const Model model = generateRandomModel(o);
@@ -172,11 +172,13 @@ TEST(ForwardSimulationSinew, RefusesUnknownHangLinkVirtualLinksAndBadOptions) {
     options.initialSpeeds = Eigen::VectorXd::Zero(model.getNumU() + 1);
     EXPECT_THROW(simulateForwardSinew(model, options, ignore), Error);
     o.numVirtualLinks = 1;
+    options = ForwardSimulationOptions();
+    options.hangBy = "virtual0";
     try {
-        simulateForwardSinew(generateRandomModel(o), ForwardSimulationOptions(), ignore);
-        ADD_FAILURE() << "no error for a virtual link";
+        simulateForwardSinew(generateRandomModel(o), options, ignore);
+        ADD_FAILURE() << "no error for hanging by a virtual link";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("virtual link"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("'virtual0' is a virtual link"), std::string::npos) << e.what();
     }
 }
 

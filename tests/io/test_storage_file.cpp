@@ -2,6 +2,7 @@
 // file and line of the problem.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -88,5 +89,115 @@ TEST(StorageFile, RowWithWrongNumberOfValues) {
     EXPECT_TRUE(rejectsAt(kHeader + "time\ta\tb\n0\t1\t2\t3\n", 8, {"4 values", "expected 3"}));
 }
 
+
+TEST(StorageFile, NaNInfAndEmptyCellsNameTheirColumn) {
+    EXPECT_TRUE(rejectsAt(kHeader + "time\ta\tb\n0\t1\t2\n0.1\tnan\t2\n", 9, {"'nan'", "column 2 'a'", "finite"}));
+    EXPECT_TRUE(rejectsAt(kHeader + "time\ta\tb\n0\t1\t-inf\n", 8, {"'-inf'", "column 3 'b'"}));
+    EXPECT_TRUE(rejectsAt(kHeader + "time\ta\tb\n0\t\t2\n", 8, {"empty cell", "column 2 'a'"}));
+}
+
+TEST(StorageFile, TimeMustIncrease) {
+    EXPECT_TRUE(rejectsAt(kHeader + "time\ta\tb\n0.1\t1\t2\n0.1\t1\t2\n", 9, {"time 0.1 does not increase"}));
+}
+
+TEST(StorageFile, BadHeader) {
+    const std::string labels = "endheader\ntime\ta\tb\n0\t1\t2\n0.1\t1\t2\n";
+    EXPECT_TRUE(rejectsAt("m\nversion=1\nnRows=2\nnColumns=3\ninDegrees=maybe\n" + labels, 5, {"inDegrees='maybe'"}));
+    EXPECT_TRUE(rejectsAt("m\nversion=1\nnRows=two\n" + labels, 3, {"nRows='two'", "integer"}));
+    EXPECT_TRUE(rejectsAt("m\nversion=1\nnRows=3\nnColumns=3\n" + labels, 3, {"nRows=3", "has 2 rows"}));
+    EXPECT_TRUE(rejectsAt("m\nversion=1\nnRows=2\nnColumns=4\n" + labels, 6, {"3 column labels", "nColumns=4"}));
+    EXPECT_TRUE(rejectsAt("DataType=Vec3\nendheader\ntime\ta\n0\t1\n", 1, {"DataType=Vec3"}));
+}
+
+// The header layout OpenSim 4 writes (STOFileAdapter): key=value lines, no name line, no nRows.
+TEST(StorageFile, OpenSim4HeaderAndMetadataSurviveARoundTrip) {
+    const std::string path = writeText(
+        "DataType=double\nversion=3\nOpenSimVersion=4.4\ninDegrees=yes\nsubject=s01\nendheader\n"
+        "time\tknee\thip\n0\t1.5\t2\n0.01\t1.6\t2.5\n");
+    const StorageTable table = readStorageFile(path);
+    EXPECT_EQ(table.name, "");
+    EXPECT_TRUE(table.inDegrees);
+    EXPECT_EQ(table.header, (std::vector<std::string>{"DataType=double", "OpenSimVersion=4.4", "subject=s01"}));
+    EXPECT_EQ(table.columns, (std::vector<std::string>{"knee", "hip"}));
+    EXPECT_EQ(table.rows[1], (std::vector<double>{1.6, 2.5}));
+    EXPECT_EQ(table.where, path + ":7");
+
+    const std::string copy = testPath(".copy.sto");
+    writeStorageFile(table, copy);
+    const StorageTable again = readStorageFile(copy);
+    EXPECT_EQ(again.header, table.header);
+    EXPECT_EQ(again.times, table.times);
+    EXPECT_EQ(again.rows, table.rows);
+}
+
+TEST(StorageFile, WriterRefusesWhatCannotBeReadBack) {
+    StorageTable table{"motion", false, {"a"}, {0.0}, {{std::nan("")}}};
+    const std::string path = testPath(".sto");
+    EXPECT_TRUE(test::throwsErrorAt([&] { writeStorageFile(table, path); }, path + ": ", {"column 'a'", "not finite"}, ""));
+    table.rows = {{1.0}};
+    table.name = "a=b";
+    EXPECT_TRUE(test::throwsErrorAt([&] { writeStorageFile(table, path); }, path + ": ", {"'a=b'", "metadata"}, ""));
+    table.name = "motion";
+    table.header = {"endheader"};
+    EXPECT_TRUE(test::throwsErrorAt([&] { writeStorageFile(table, path); }, path + ": ", {"'endheader'"}, ""));
+}
+
+TEST(StorageFile, MatchColumns) {
+    const std::string path = writeText("motion\nendheader\ntime\tb\ta\ta\tc\n0\t1\t2\t3\t4\n");
+    const StorageTable table = readStorageFile(path);
+    EXPECT_EQ(matchStorageColumns(table, {"c", "b"}, ExtraColumns::Allow), (std::vector<int>{3, 0}));
+    EXPECT_TRUE(test::throwsErrorAt([&] { matchStorageColumns(table, {"b", "a", "d"}, ExtraColumns::Refuse); },
+                                    path + ":3: ", {"missing 'd'", "duplicated 'a' (2 times)", "not expected 'c'"}, ""));
+    EXPECT_TRUE(test::throwsErrorAt([&] { matchStorageColumns(table, {"b", "c"}, ExtraColumns::Refuse); },
+                                    path + ":3: ", {"not expected 'a', 'a'"}, ""));
+}
+
+// Every .mot and .sto file of the shared OpenSim data reads, with as many rows and columns as a plain
+// count of its lines and labels gives, and writes back to a file that reads the same.
+TEST(StorageFile, EveryOpenSimDataFileReadsAndRoundTrips) {
+    const std::filesystem::path root = std::filesystem::path(SINEW_SHARED_DIR) / "data" / "opensim";
+    if (!std::filesystem::exists(root)) GTEST_SKIP() << "OpenSim data not found at " << root;
+    int files = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {
+        const std::string extension = entry.path().extension().string();
+        if (extension != ".mot" && extension != ".sto") continue;
+        ++files;
+        SCOPED_TRACE(entry.path().string());
+        const StorageTable table = readStorageFile(entry.path().string());
+        std::ifstream in(entry.path());
+        std::string line;
+        int dataLines = -1;  // the labels line comes first
+        bool inData = false;
+        std::string labels;
+        while (std::getline(in, line)) {
+            if (inData && line.find_first_not_of(" \t\r") != std::string::npos && ++dataLines == 0) labels = line;
+            if (line.rfind("endheader", 0) == 0) inData = true;
+        }
+        EXPECT_EQ(static_cast<int>(table.rows.size()), dataLines);
+        EXPECT_EQ(table.columns.size() + 1, static_cast<std::size_t>(std::count(labels.begin(), labels.end(), '\t') + 1));
+
+        const std::string copy = testPath("." + entry.path().filename().string());
+        writeStorageFile(table, copy);
+        const StorageTable again = readStorageFile(copy);
+        EXPECT_EQ(again.name, table.name);
+        EXPECT_EQ(again.inDegrees, table.inDegrees);
+        EXPECT_EQ(again.header, table.header);
+        EXPECT_EQ(again.columns, table.columns);
+        EXPECT_EQ(again.times, table.times);
+        EXPECT_EQ(again.rows, table.rows);
+    }
+    EXPECT_EQ(files, 11);
+
+    const StorageTable ik = readStorageFile((root / "arm26" / "arm26_InverseKinematics.mot").string());
+    EXPECT_EQ(ik.name, "Coordinates");
+    EXPECT_TRUE(ik.inDegrees);
+    EXPECT_EQ(ik.columns, (std::vector<std::string>{"r_shoulder_elev", "r_elbow_flex"}));
+    EXPECT_EQ(ik.rows[0], (std::vector<double>{-0.03394423, -0.05440752}));
+    // A header whose lines end in tabs, as Vicon-era tools wrote them.
+    const StorageTable grf = readStorageFile((root / "gait2354" / "subject01_walk1_grf.mot").string());
+    EXPECT_EQ(grf.name, "subject01_walk1_grf.mot");
+    EXPECT_EQ(grf.times.back(), 2.5);
+    EXPECT_EQ(grf.rows.back().back(), 0.99444594);
+}
 }  // namespace
 }  // namespace sinew

@@ -113,7 +113,7 @@ TEST(ForwardSimulation, HangByHoldsTheLinkAtItsInitialPose) {
     }
 }
 
-TEST(ForwardSimulation, RefusesUnknownHangLinkAndVirtualLinks) {
+TEST(ForwardSimulation, RefusesUnknownOrVirtualHangLink) {
     RandomModelOptions o;
     o.numLinks = 3;
     ForwardSimulationOptions options;
@@ -130,7 +130,7 @@ TEST(ForwardSimulation, RefusesUnknownHangLinkAndVirtualLinks) {
         },
         Error);
     o.numVirtualLinks = 1;
-    options.hangBy.clear();
+    options.hangBy = "virtual0";
     EXPECT_THROW(simulateForward(generateRandomModel(o), options, ignore), Error);
 }
 

@@ -88,9 +88,10 @@ void expectAgreementWithSimbody(const test::NamedModel& m, std::mt19937& rng) {
     EXPECT_GT(tautWires, 0) << m.name << ": no taut wire, the force comparison was empty";
 }
 
-TEST(SimbodyWireForce, AgreesWithCoreOnRandomModelsWithLoopsAndVirtualLinks) {
+// (Wires through virtual links act through VirtualLinkWireForce, checked in test_virtual_links.cpp.)
+TEST(SimbodyWireForce, AgreesWithCoreOnRandomModelsWithLoops) {
     std::mt19937 rng(5);
-    for (const test::NamedModel& m : test::makeRandomModels(30, true)) expectAgreementWithSimbody(m, rng);
+    for (const test::NamedModel& m : test::makeRandomModels(30, false)) expectAgreementWithSimbody(m, rng);
 }
 
 TEST(SimbodyWireForce, AgreesWithCoreOnArm26) {
@@ -107,6 +108,7 @@ TEST(SimbodyModel, MobilizedBodyPosesMatchCoreKinematics) {
         Data data(m.model);
         calcPositionKinematics(m.model, data, q);
         for (int i = 0; i < m.model.getNumLinks(); ++i) {
+            if (m.model.getLink(i).isVirtual) continue;  // not a Simbody body: its pose is solved
             const SimTK::Transform& X_GB = simbody.getMobilizedBody(i).getBodyTransform(state);
             const std::size_t b = static_cast<std::size_t>(i);
             for (int r = 0; r < 3; ++r) {

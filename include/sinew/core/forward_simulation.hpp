@@ -29,8 +29,13 @@ namespace sinew {
 // RungeKutta4Fixed is the classic fourth-order method, blind to switches. Both land exactly on the report
 // times.
 //
-// Throws sinew::Error for an unknown hang link, virtual links (not treated by the closed-chain solver yet),
-// bad options, or a non-finite state, naming the time.
+// Virtual links are not integrated: each evaluation puts them in quasi-static equilibrium under their wires
+// (calcVirtualLinkEquilibrium, warm-started from the last accepted state), and their entries of q and u in
+// the frames are that equilibrium's poses and twists (SimulationSummary::maxVirtualLinkResidual reports how
+// well it held); the forward dynamics leaves them out.
+//
+// Throws sinew::Error for an unknown (or virtual) hang link, bad options, or a non-finite state, naming the
+// time.
 SimulationSummary simulateForwardSinew(const Model& model, const ForwardSimulationOptions& options,
                                        const std::function<void(const SimulationFrame&)>& onFrame);
 

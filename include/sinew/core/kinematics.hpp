@@ -8,7 +8,8 @@
 
 namespace sinew {
 
-// Fills Data::R_GB, p_GB, R_GF, p_GM from q (nq). Quaternions need not be normalised.
+// Fills Data::R_GB, p_GB, R_GF, p_GM (and H_FM of custom joints) from q (nq). Quaternions need not be
+// normalised.
 void calcPositionKinematics(const Model& model, Data& data, const Eigen::VectorXd& q);
 
 // Fills Data::w_GB, v_GB from u (nu). Needs calcPositionKinematics first.
@@ -20,10 +21,11 @@ void calcVelocityKinematics(const Model& model, Data& data, const Eigen::VectorX
 void calcGeneralizedForcesFromLinkForces(const Model& model, Data& data, Eigen::Ref<Eigen::VectorXd> tau);
 
 // The generalized force (joint.nu values written at tauJoint) that a spatial force F_G (moment about the
-// point p_ref; force; ground axes) acting on the joint's subtree exerts on the joint, given the joint frame
-// F's orientation R_GF and the joint centre p_GM: H^T F with H the joint's motion subspace.
-void projectOntoJoint(const Joint& joint, const Eigen::Matrix3d& R_GF, const Eigen::Vector3d& p_GM,
-                      const Eigen::Vector3d& p_ref, const SpatialVector& F_G, double* tauJoint);
+// point p_ref; force; ground axes) acting on the subtree of `link` exerts on its joint: H^T F with H the
+// joint's motion subspace, F taken about the joint centre in F axes. Reads the link's R_GF, p_GM and H_FM
+// from calcPositionKinematics.
+void projectOntoJoint(const Joint& joint, const Data& data, int link, const Eigen::Vector3d& p_ref,
+                      const SpatialVector& F_G, double* tauJoint);
 
 // Adds a link's spatial force (moment about its origin) to its parent's (moment about the parent's origin).
 void addToParent(const Model& model, Data& data, int link);

@@ -9,25 +9,58 @@
 //   orientation R_BM; at q = identity the two frames coincide;
 // - free: q = [quaternion w x y z of R_FM, p_FM], u = [w_FM in F, v_FM in F]; ball: q = quaternion,
 //   u = w_FM in F; pin: rotation about F's z axis, q = angle, u = rate; weld: nothing;
+// - custom (OpenSim's CustomJoint, Simbody's MobilizedBody::FunctionBased): q = u = the joint's own
+//   coordinates; R_FM = R(theta_0, a_0) R(theta_1, a_1) R(theta_2, a_2) (body-fixed sequence),
+//   p_FM = sum_k theta_k a_k (k = 3..5, in F), theta_k = f_k(q_c(k)); see docs/opensim-joints.md;
 // - spatial vectors are [angular; linear]; G is ground.
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "sinew/core/force_law.hpp"
+#include "sinew/core/function.hpp"
 
 namespace sinew {
 
 constexpr int kGround = -1;  // parent index of a joint attached to ground
 
-enum class JointType { Free, Ball, Pin, Weld };
+enum class JointType { Free, Ball, Pin, Weld, Custom };
 enum class WireKind { Muscle, Tendon, Ligament, Cartilage };
 
 const char* toString(JointType type);
 const char* toString(WireKind kind);
-int getNumQ(JointType type);  // 7, 4, 1, 0
-int getNumU(JointType type);  // 6, 3, 1, 0
+// 7, 4, 1, 0; a custom joint has as many as it has coordinates (Joint::nq), so these throw for it.
+int getNumQ(JointType type);
+int getNumU(JointType type);  // 6, 3, 1, 0; throws for custom
+
+// How a coordinate moves its joint, as OpenSim decides it (CustomJoint::constructCoordinates): rotational
+// or translational when some axis of its is driven by it with slope +-1, coupled otherwise.
+enum class MotionType { Rotational, Translational, Coupled };
+const char* toString(MotionType type);
+
+constexpr int kNoCoordinate = -1;
+
+// One of a custom joint's six TransformAxes: displacement theta = function(q of `coordinate`) along a
+// unit axis of F (a rotation angle in rad for the first three, a translation in m for the last three).
+struct TransformAxis {
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // unit, in F
+    int coordinate = kNoCoordinate;  // index among the joint's own coordinates (0 .. nq-1), or none
+    Function function = Function::constant(0);  // of that coordinate; constant when there is none
+};
+
+// One entry of the model's q (nq of them, all joints, in q order).
+struct Coordinate {
+    std::string name;  // column name: a custom joint's coordinate names; see getCoordinateNames otherwise
+    MotionType motionType = MotionType::Rotational;
+    int joint = 0;            // index of the joint (= link) it belongs to
+    double defaultValue = 0;  // rad or m (a quaternion entry for ball/free), the model's default q
+    double rangeMin = -std::numeric_limits<double>::infinity();  // rad or m
+    double rangeMax = std::numeric_limits<double>::infinity();
+    bool clamped = false;  // OpenSim's flags, kept for importers and writers; the algorithms ignore them
+    bool locked = false;
+};
 
 struct Link {
     std::string name;
@@ -47,6 +80,9 @@ struct Joint {
     Eigen::Matrix3d R_BM = Eigen::Matrix3d::Identity();
     int qStart = 0, nq = 0;  // slice of the model's q
     int uStart = 0, nu = 0;  // slice of the model's u
+    // Custom joints: rotation1, rotation2, rotation3, translation1, translation2, translation3 (6); empty
+    // for the other types.
+    std::vector<TransformAxis> transformAxes;
 };
 
 // A ball-joint loop closure: point p_A on link A and point p_B on link B stay together.
@@ -63,6 +99,58 @@ struct WirePoint {
     Eigen::Vector3d p_B = Eigen::Vector3d::Zero();  // m, in that link's frame
 };
 
+// A wire point that is on the path only while a coordinate lies in [min, max] (OpenSim's
+// ConditionalPathPoint, whose test widens the range by 1e-5 on each side, as sinew's does).
+struct WirePointCondition {
+    int point = 0;  // the wire's point, counted from 0 along the wire
+    int q = 0;      // index of the coordinate in q (a coordinate with qdot = u: pin or custom joint)
+    double min = 0, max = 0;  // rad or m
+};
+
+// One moving component of a wire point (OpenSim's MovingPathPoint): p_B[axis] = function(q[q]), with the
+// coordinate clamped to its range (Coordinate::rangeMin/Max) as OpenSim clamps it; the point's other
+// components are the fixed WirePoint::p_B ones. Outside the range the component stops, so its rate is 0.
+struct WirePointMotion {
+    int point = 0;      // the wire's point, counted from 0 along the wire
+    int axis = 0;       // 0, 1, 2: x, y, z of the point in its link's frame
+    int q = 0, u = 0;   // the coordinate's index in q, and in u (qdot = u for it)
+    Function function;  // m, of the coordinate (rad or m)
+};
+
+// A smooth obstacle fixed on a link that wires wrap over (OpenSim's WrapSphere, WrapCylinder, WrapEllipsoid).
+// Its frame W sits at the shape's centre; a cylinder's axis is W's z. docs/wire-paths.md has the geometry.
+enum class WrapShape { Sphere, Cylinder, Ellipsoid };
+const char* toString(WrapShape shape);
+
+struct WrapObject {
+    std::string name;
+    WrapShape shape = WrapShape::Sphere;
+    int link = 0;
+    Eigen::Vector3d xyzBodyRotation = Eigen::Vector3d::Zero();  // rad, OpenSim's body-fixed X-Y-Z angles, as given
+    Eigen::Matrix3d R_BW = Eigen::Matrix3d::Identity();         // = Rx Ry Rz of those angles
+    Eigen::Vector3d p_BW = Eigen::Vector3d::Zero();             // m, W's origin in the link frame
+    double radius = 0;                                  // m, sphere and cylinder
+    double length = 0;                                  // m, cylinder: its extent along z, centred on W
+    Eigen::Vector3d radii = Eigen::Vector3d::Zero();    // m, ellipsoid: semi-axes along W's x, y, z
+    // OpenSim's quadrant: wrapping kept to the side of W where coordinate `quadrantAxis` (0, 1, 2) has the
+    // sign `quadrantSign` (+1, -1); quadrantSign 0 (quadrant "all") leaves both sides free.
+    int quadrantAxis = 0;
+    int quadrantSign = 0;
+};
+
+// How an ellipsoid chooses its wrapping plane (OpenSim's PathWrap method); spheres and cylinders wrap along
+// exact shortest paths whatever it says.
+enum class WrapMethod { Hybrid, Midpoint, Axial };
+const char* toString(WrapMethod method);
+
+// One entry of a wire's wrap list (OpenSim's PathWrap): the wire may wrap over `object` between its points
+// firstPoint and lastPoint (inclusive, counted from 0 along the wire).
+struct WireWrap {
+    int object = 0;  // index into Model::getWrapObjects()
+    int firstPoint = 0, lastPoint = 0;
+    WrapMethod method = WrapMethod::Hybrid;
+};
+
 struct ForceLawSpec {
     std::string type;               // registry name
     ForceLawParameters parameters;  // as given, kept so the model can be written back
@@ -75,9 +163,15 @@ struct Wire {
     int numPoints = 0;   // >= 2: origin, via-points..., insertion
     ForceLawSpec lawSpec;
     std::shared_ptr<const ForceLaw> law;
-    // Links whose joints move at least one of the wire's points, children before parents; Jacobian and
-    // force passes visit only these (derived at build).
+    // OpenSim's path features; a wire with none of them is a plain polyline, evaluated on a faster path.
+    std::vector<WirePointCondition> conditions;
+    std::vector<WirePointMotion> motions;  // ordered by point
+    std::vector<WireWrap> wraps;           // in the order OpenSim applies them
+    // Links whose joints move at least one of the wire's points or wrap objects, children before parents;
+    // Jacobian and force passes visit only these (derived at build).
     std::vector<int> supportLinks;
+
+    bool isPolyline() const { return conditions.empty() && motions.empty() && wraps.empty(); }
 };
 
 class Model {
@@ -98,14 +192,17 @@ public:
     const std::vector<Wire>& getWires() const { return wires_; }
     const std::vector<Loop>& getLoops() const { return loops_; }
     const std::vector<WirePoint>& getWirePoints() const { return wirePoints_; }  // all wires' points, flat
+    const std::vector<WrapObject>& getWrapObjects() const { return wrapObjects_; }
 
     const Eigen::Vector3d& getGravity() const { return gravity_; }  // m/s^2, in ground
     const Eigen::VectorXd& getDefaultQ() const { return defaultQ_; }  // the model file's initial pose (nq)
+    const std::vector<Coordinate>& getCoordinates() const { return coordinates_; }  // one per q entry (nq)
 
     static constexpr int kNotFound = -2;
     // kGround for "ground", kNotFound when there is no such link.
     int findLinkIndex(const std::string& name) const;
     int findWireIndex(const std::string& name) const;  // kNotFound when absent
+    int findCoordinateIndex(const std::string& name) const;  // its index in q; kNotFound when absent
 
 private:
     friend class ModelBuilder;
@@ -115,13 +212,16 @@ private:
     std::vector<Loop> loops_;
     std::vector<Wire> wires_;
     std::vector<WirePoint> wirePoints_;
+    std::vector<WrapObject> wrapObjects_;
     Eigen::Vector3d gravity_ = Eigen::Vector3d(0, -9.80665, 0);
     Eigen::VectorXd defaultQ_;
+    std::vector<Coordinate> coordinates_;
     int nq_ = 0, nu_ = 0;
 };
 
 // Column names for q and u, per joint in model order: a free joint "j" gives j_qw j_qx j_qy j_qz j_x j_y j_z
-// and j_wx j_wy j_wz j_vx j_vy j_vz; a ball the quaternion and angular parts; a pin just "j".
+// and j_wx j_wy j_wz j_vx j_vy j_vz; a ball the quaternion and angular parts; a pin just "j"; a custom
+// joint its coordinates' names (for both).
 std::vector<std::string> getCoordinateNames(const Model& model);
 std::vector<std::string> getSpeedNames(const Model& model);
 

@@ -2,6 +2,7 @@
 // Builds a validated, immutable Model from element descriptions that refer to each other by name. Every
 // element carries `where` (e.g. "arm.yaml:14"), which prefixes the ModelError it causes.
 #include <Eigen/Core>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,6 +19,25 @@ struct LinkSpec {
     std::string where;
 };
 
+// One TransformAxis of a custom joint (OpenSim's names: rotation1-3, translation1-3).
+struct TransformAxisSpec {
+    Eigen::Vector3d axis = Eigen::Vector3d::UnitX();  // in F, non-zero; normalised at build, as Simbody does
+    std::string coordinate;  // one of the joint's coordinates, or empty for none
+    // Absent: linear(1, 0) of the coordinate (OpenSim's default), or constant(0) without a coordinate.
+    std::optional<Function> function;
+};
+
+// A custom joint's coordinate (OpenSim's Coordinate); other joint types name theirs after the joint.
+struct CoordinateSpec {
+    std::string name;
+    double defaultValue = 0;  // rad or m
+    double rangeMin = -std::numeric_limits<double>::infinity();
+    double rangeMax = std::numeric_limits<double>::infinity();
+    bool clamped = false;
+    bool locked = false;
+    std::string where;
+};
+
 struct JointSpec {
     std::string name;
     JointType type = JointType::Ball;
@@ -30,6 +50,12 @@ struct JointSpec {
     std::optional<Eigen::Vector3d> initialRotation;
     std::optional<double> initialAngle;
     std::optional<Eigen::Vector3d> initialPosition;
+    // Custom and weld joints: orientation of F in the parent and of M in the child (rotation matrices).
+    std::optional<Eigen::Matrix3d> R_PF, R_BM;
+    // Custom joints only: exactly six axes, and the coordinates they name (ordered at build by first
+    // appearance in the axes, as OpenSim orders them; each must be used).
+    std::vector<TransformAxisSpec> transformAxes;
+    std::vector<CoordinateSpec> coordinates;
     std::string where;
 };
 
@@ -48,9 +74,46 @@ struct LoopSpec {
     std::string where;
 };
 
+// OpenSim's ConditionalPathPoint: the point is on the path while `coordinate` lies in [min, max].
+struct WirePointConditionSpec {
+    std::string coordinate;
+    double min = 0, max = 0;  // rad or m
+};
+
+// One moving component of an OpenSim MovingPathPoint: p_B[axis] = function(coordinate).
+struct WirePointMotionSpec {
+    int axis = 0;  // 0, 1, 2 for x, y, z
+    std::string coordinate;
+    Function function;
+};
+
 struct WirePointSpec {
     std::string link;
-    Eigen::Vector3d p_B = Eigen::Vector3d::Zero();
+    Eigen::Vector3d p_B = Eigen::Vector3d::Zero();  // m; a moving component's entry is ignored
+    std::string where;
+    std::optional<WirePointConditionSpec> condition = std::nullopt;
+    std::vector<WirePointMotionSpec> motions = {};  // at most one per axis
+};
+
+struct WrapObjectSpec {
+    std::string name;
+    WrapShape shape = WrapShape::Sphere;
+    std::string link;
+    Eigen::Vector3d xyzBodyRotation = Eigen::Vector3d::Zero();  // rad, body-fixed X-Y-Z
+    Eigen::Vector3d translation = Eigen::Vector3d::Zero();      // m, W's origin in the link frame
+    double radius = 0;                                // m, sphere and cylinder
+    double length = 0;                                // m, cylinder
+    Eigen::Vector3d radii = Eigen::Vector3d::Zero();  // m, ellipsoid
+    std::string quadrant = "all";                     // OpenSim's words: all, x, +x, -x, y, ..., -z
+    std::string where;
+};
+
+// OpenSim's PathWrap. The range counts the wire's points from 0 and is inclusive; absent ends are the
+// wire's first and last points.
+struct WireWrapSpec {
+    std::string object;
+    std::optional<int> firstPoint, lastPoint;
+    WrapMethod method = WrapMethod::Hybrid;
     std::string where;
 };
 
@@ -58,6 +121,7 @@ struct WireSpec {
     std::string name;
     WireKind kind = WireKind::Muscle;
     std::vector<WirePointSpec> points;
+    std::vector<WireWrapSpec> wraps;
     ForceLawSpec law;
     std::string where;
     std::string lawWhere;  // where the force law is written, for its errors; `where` when empty
@@ -73,6 +137,7 @@ public:
     void addVirtualLink(VirtualLinkSpec link) { virtualLinks_.push_back(std::move(link)); }
     void addLoop(LoopSpec loop) { loops_.push_back(std::move(loop)); }
     void addWire(WireSpec wire) { wires_.push_back(std::move(wire)); }
+    void addWrapObject(WrapObjectSpec object) { wrapObjects_.push_back(std::move(object)); }
 
     // Validates everything and builds the model; throws ModelError naming the offending element's `where`.
     Model build() const;
@@ -86,6 +151,7 @@ private:
     std::vector<VirtualLinkSpec> virtualLinks_;
     std::vector<LoopSpec> loops_;
     std::vector<WireSpec> wires_;
+    std::vector<WrapObjectSpec> wrapObjects_;
 };
 
 }  // namespace sinew

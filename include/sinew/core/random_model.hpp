@@ -11,8 +11,12 @@ struct RandomModelOptions {
     enum class Topology { Chain, BinaryTree, RandomTree };
     int numLinks = 10;
     Topology topology = Topology::RandomTree;
-    JointType rootJoint = JointType::Free;  // free, ball (a pendulum), pin or weld
+    // free, ball (a pendulum), pin, weld, or custom (six coordinates, one per axis, as OpenSim's ground_pelvis)
+    JointType rootJoint = JointType::Free;
     double pinFraction = 0.2;  // share of non-root joints that are pins instead of balls
+    // Share of non-root joints that are custom joints: 1-3 coordinates on random axes, each driving a rotation
+    // linearly, the other axes constant or coupled to a coordinate through splines, polynomials, multipliers.
+    double customJointFraction = 0;
     int numLoops = 0;          // ball closures between random link pairs, assembled at the default pose
     int numWires = 20;         // wires spanning 1 to 3 joints (0 in a one-link model)
     int maxViaPoints = 2;
@@ -26,7 +30,7 @@ struct RandomModelOptions {
 Model generateRandomModel(const RandomModelOptions& options);
 
 // Random coordinates: unit quaternions uniformly distributed, pin angles in [-pi, pi], translations in
-// [-1, 1] m.
+// [-1, 1] m, custom joints' coordinates in [-2.5, 2.5] (their splines' knots span [-2, 2]).
 Eigen::VectorXd generateRandomCoordinates(const Model& model, std::mt19937& rng);
 // Random speeds, uniform in [-scale, scale].
 Eigen::VectorXd generateRandomSpeeds(const Model& model, std::mt19937& rng, double scale = 1.0);

@@ -49,6 +49,10 @@ struct SimulationSummary {
     // the loops and the hang have drifted open. Simbody projects it below the constraint tolerance; sinew's
     // engine holds the constraints at acceleration level, so it grows with the integration error.
     double maxConstraintViolation = 0;
+    // N, max over the reported frames of the virtual links' equilibrium residual
+    // (VirtualLinkEquilibriumStatus::residual): 0 to roundoff unless a damped wire's tension jumps as it goes
+    // taut (no exact equilibrium then; the solve stops at the smallest residual it finds).
+    double maxVirtualLinkResidual = 0;
 };
 
 }  // namespace sinew

@@ -1,6 +1,8 @@
 #pragma once
 // Wire geometry: a wire is a polyline through its points (origin, via-points, insertion), each fixed on a
-// link. Length, lengthening speed, and tension from the wire's force law.
+// link; OpenSim's paths add points active over a coordinate range, points whose position in their link
+// follows a coordinate, and wraps over spheres, cylinders and ellipsoids (docs/wire-paths.md). Length,
+// lengthening speed, and tension from the wire's force law.
 #include <Eigen/Core>
 
 #include "sinew/core/data.hpp"
@@ -8,12 +10,21 @@
 
 namespace sinew {
 
-// Fills Data::p_GP, dLdp_GP and wireLength. Needs calcPositionKinematics.
+// Fills Data::p_GP and wireLength, and the path as evaluated: dLdp_GP for polyline wires, Data::wirePath
+// for the others. Needs calcPositionKinematics.
 void calcWirePaths(const Model& model, Data& data);
 
 // Fills Data::v_GP and wireSpeed (the time derivative of wireLength). Needs calcVelocityKinematics and
 // calcWirePaths.
 void calcWireSpeeds(const Model& model, Data& data);
+
+// Point `point` (counted from 0) of `wire` in its link's frame at coordinates q, moving components
+// included (m).
+Eigen::Vector3d calcWirePointLocation(const Model& model, const Wire& wire, int point, const Eigen::VectorXd& q);
+
+// d(p_B[axis])/dq of a moving component at coordinates q: the function's slope, 0 where the coordinate
+// is clamped to its range (m per rad or m/m).
+double calcWirePointMotionRate(const Model& model, const WirePointMotion& motion, const Eigen::VectorXd& q);
 
 // Tension of every wire (N, >= 0) from its force law at the lengths and speeds in `data`.
 void calcWireTensions(const Model& model, const Data& data, double time, Eigen::Ref<Eigen::VectorXd> tensions);

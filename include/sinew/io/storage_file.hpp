@@ -1,22 +1,41 @@
 #pragma once
-// OpenSim storage (.sto/.mot) tables: a header ending in `endheader`, then a tab-separated table whose
-// first column is time.
-#include <Eigen/Core>
+// OpenSim storage (.sto/.mot) tables: a header ending in `endheader`, then a table whose first column is
+// time. Reads both header styles OpenSim writes (docs/opensim-files.md):
+// - version 1: a name line, then version=1, nRows=, nColumns= (time included), inDegrees=yes|no, free text;
+// - OpenSim 4 (file version 3): key=value lines (DataType=double, version=3, OpenSimVersion=..., any user
+//   metadata), with or without a name line first.
+// Written files use the version-1 header, which every OpenSim release reads.
 #include <string>
 #include <vector>
 
 namespace sinew {
 
 struct StorageTable {
-    std::string name;
-    bool inDegrees = false;
-    std::vector<std::string> columns;  // without "time"
-    std::vector<double> times;         // s
+    std::string name;                       // the header's first line, unless that line is key=value
+    bool inDegrees = false;                 // angles in the table are in degrees
+    std::vector<std::string> columns;       // labels without "time"
+    std::vector<double> times;              // s, one per row
     std::vector<std::vector<double>> rows;  // rows[i].size() == columns.size()
+    // The other header lines in file order, verbatim (trailing blanks trimmed): key=value metadata other
+    // than version, nRows, nColumns and inDegrees, and free text. Written back as they are.
+    std::vector<std::string> header = {};
+    // "file:line" of the column labels when the table was read from a file, for messages; empty otherwise.
+    std::string where = {};
 };
 
+// Throws sinew::Error for a table that could not be read back: rows of the wrong length, a non-finite
+// value, a label or header line that would break the layout.
 void writeStorageFile(const StorageTable& table, const std::string& path);
-// Throws sinew::Error naming the file and line of a malformed header or row.
+// Throws sinew::Error naming the file, line (and column, for a cell) of a malformed header or row; NaN,
+// infinite and non-numeric cells are refused.
 StorageTable readStorageFile(const std::string& path);
+
+enum class ExtraColumns { Allow, Refuse };
+
+// Where each expected label sits: result[i] indexes table.columns for expected[i]. Throws sinew::Error at
+// table.where listing every missing expected label, every expected label present more than once, and
+// (with ExtraColumns::Refuse) every column that was not expected.
+std::vector<int> matchStorageColumns(const StorageTable& table, const std::vector<std::string>& expected,
+                                     ExtraColumns extra);
 
 }  // namespace sinew

@@ -1,7 +1,10 @@
 #pragma once
 // Builds a SimTK::MultibodySystem from a sinew Model: one MobilizedBody per link (Free, Ball, Pin, Weld
 // mobilizers, in the model's order so Simbody's q and u are sinew's), Constraint::Ball loop closures,
-// gravity, and one WireForce (Force::Custom) per wire.
+// gravity, and one WireForce (Force::Custom) per wire. Virtual links are massless, which Simbody's bodies
+// cannot be: they get no mobilized body, and the wires through them one VirtualLinkWireForce that holds
+// them in quasi-static equilibrium. Virtual links come last in the model, so Simbody's q and u are then the
+// head of sinew's (the virtual links' entries follow from the equilibrium: calcCoordinates).
 #include "sinew/simbody/ndebug_guard.hpp"
 
 #include <Eigen/Core>
@@ -37,12 +40,22 @@ public:
     SimTK::GeneralForceSubsystem& updForces() { return *forces_; }
     // Loop k's Constraint::Ball.
     const SimTK::Constraint::Ball& getLoopConstraint(int loop) const;
-    const SimTK::MobilizedBody& getMobilizedBody(int link) const;
-    // Wire w's force element and its implementation (for its length, speed and tension).
+    const SimTK::MobilizedBody& getMobilizedBody(int link) const;  // throws sinew::Error for a virtual link
+    // Wire w's force element and its implementation (for its length, speed and tension); throws sinew::Error
+    // for a wire through a virtual link.
     const SimTK::Force& getWireForceElement(int wire) const;
     const WireForce& getWireForce(int wire) const;
+    // The force element of the wires through virtual links; nullptr when there are none (or no wires).
+    const VirtualLinkWireForce* getVirtualLinkWireForce() const { return virtualLinkWireForce_; }
 
-    // The system's default state with sinew's q (nq) and u (nu) in it, realized to `stage`.
+    // Every wire's tension (N) at a state realized to Velocity.
+    Eigen::VectorXd calcWireTensions(const SimTK::State& state) const;
+    // sinew's q (nq) and u (nu) at a state realized to Velocity: Simbody's, then the virtual links' poses and
+    // quasi-static twists from their equilibrium.
+    void calcCoordinates(const SimTK::State& state, Eigen::VectorXd& q, Eigen::VectorXd& u) const;
+
+    // The system's default state with sinew's q (nq) and u (nu) in it, realized to `stage` (the virtual
+    // links' entries are not part of Simbody's state and are ignored).
     SimTK::State makeState(const Eigen::VectorXd& q, const Eigen::VectorXd& u,
                            SimTK::Stage stage = SimTK::Stage::Velocity) const;
     // The model's default pose, at rest; loop closures satisfied to `accuracy` (projected when needed).
@@ -57,7 +70,8 @@ private:
     std::vector<SimTK::MobilizedBodyIndex> mobilizedBodies_;
     std::vector<SimTK::ForceIndex> wireForces_;
     std::vector<SimTK::ConstraintIndex> loopConstraints_;
-    std::vector<const WireForce*> wireImplementations_;
+    std::vector<const WireForce*> wireImplementations_;  // nullptr for a wire through a virtual link
+    const VirtualLinkWireForce* virtualLinkWireForce_ = nullptr;  // owned by the system
 };
 
 SimTK::Vector toSimTK(const Eigen::VectorXd& v);

@@ -1,0 +1,77 @@
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "arguments.hpp"
+#include "commands.hpp"
+#include "progress.hpp"
+#include "sinew/core/error.hpp"
+#include "sinew/tools/model_loading.hpp"
+#include "sinew/tools/tension_motion.hpp"
+
+namespace sinew::cli {
+namespace {
+
+const char* kUsage =
+    "usage: sinew tensions MODEL MOTION --method lp|qp|so [options] -o TENSIONS.sto\n"
+    "  Wire tensions per frame of a coordinates table (.mot/.sto): inverse dynamics (processed as OpenSim's\n"
+    "  ID tool), the wire Jacobian, then the LP (least total tension), the QP (least squares) or OpenSim's\n"
+    "  static optimization (least squared activations). DOFs no wire reaches (a floating root) keep their\n"
+    "  generalized force as residual. Writes TENSIONS.sto, TENSIONS_report.sto (per frame: status 0 optimal,\n"
+    "  1 infeasible, 2 failed; Z; active wires; residuals and phase-1 reserves per DOF) and, for so,\n"
+    "  TENSIONS_activations.sto. Infeasible and failed frames are kept and counted. MODEL: .osim or .yaml.\n"
+    "  --external-loads X.xml   OpenSim ExternalLoads (e.g. ground reactions)\n"
+    "  --lowpass HZ             low-pass cut-off for the coordinates (default: no filtering)\n"
+    "  --start T, --end T       time range, s (default: the whole motion)\n"
+    "  --tolerance TAU          LP torque band, N m (default 1e-3)\n"
+    "  -o TENSIONS.sto          output file\n";
+
+std::string withSuffix(const std::string& path, const std::string& suffix) {
+    const std::filesystem::path p(path);
+    return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
+}  // namespace
+
+int runTensions(const std::vector<std::string>& args) {
+    std::string modelPath, motionPath, loadsPath, output, method;
+    TensionMotionOptions options;
+    ArgumentReader reader(args, kUsage);
+    while (reader.next()) {
+        if (reader.is("--method")) method = reader.value();
+        else if (reader.is("--external-loads")) loadsPath = reader.value();
+        else if (reader.is("--lowpass")) options.lowpassCutoffHz = reader.number();
+        else if (reader.is("--start")) options.startTime = reader.number();
+        else if (reader.is("--end")) options.finalTime = reader.number();
+        else if (reader.is("--tolerance")) options.analysis.problem.torqueTolerance = reader.number();
+        else if (reader.is("-o", "--output")) output = reader.value();
+        else reader.takePositional({&modelPath, &motionPath});
+    }
+    if (reader.helpShown()) return 0;
+    if (modelPath.empty() || motionPath.empty() || output.empty() || method.empty()) return reader.failWithUsage();
+    options.analysis.method = parseTensionMethod(method);
+    const Model model = loadModel(modelPath, [](const std::string& note) { std::printf("%s\n", note.c_str()); });
+    std::optional<ExternalLoads> loads;
+    if (!loadsPath.empty()) loads = readExternalLoads(loadsPath);
+    std::optional<Progress> progress;
+    options.onFrame = [&](int frame, int frames) {
+        if (!progress) progress.emplace("tensions (" + method + ")", frames);
+        progress->update(frame);
+    };
+    const TensionMotionResult result = runTensionAnalysis(model, readStorageFile(motionPath), loads ? &*loads : nullptr, options);
+    if (progress) progress->finish();
+    const std::filesystem::path parent = std::filesystem::path(output).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
+    writeStorageFile(result.tensions, output);
+    writeStorageFile(result.report, withSuffix(output, "_report"));
+    if (options.analysis.method == TensionMethod::StaticOptimization)
+        writeStorageFile(result.activations, withSuffix(output, "_activations"));
+    std::printf("%zu frames, %zu wires (%s) -> %s\n", result.tensions.times.size(), result.tensions.columns.size(),
+                method.c_str(), output.c_str());
+    if (result.flaggedFrames > 0)
+        std::printf("%d frames not optimal (infeasible or failed): see status and residuals in %s\n",
+                    result.flaggedFrames, withSuffix(output, "_report").c_str());
+    return 0;
+}
+
+}  // namespace sinew::cli

@@ -1,0 +1,419 @@
+#include "sinew/core/smoothing_spline.hpp"
+
+#include <Eigen/SVD>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "sinew/core/error.hpp"
+
+namespace sinew {
+namespace {
+
+constexpr int kMaxOrder = 2 * SmoothingSpline::kMaxHalfOrder;
+using Window = std::array<double, kMaxOrder>;
+using SparseMatrix = Eigen::SparseMatrix<double>;
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+// The `derivative`-th derivative at t of sum_j a_j B_j, the B-splines of `order` on `knots`, where t lies
+// in the knot span [knots[span], knots[span+1]) (or at its right end) and window[r] = a_{span-order+1+r}.
+// The coefficients are differenced once per derivative (each lowers the order by one), then de Boor's
+// recurrence evaluates the lower-order spline (de Boor, A Practical Guide to Splines, ch. X).
+double evalOnSpan(const Eigen::VectorXd& knots, int order, int span, Window a, double t, int derivative) {
+    if (derivative >= order) return 0;
+    const int first = span - order + 1;  // global index of window[0]
+    for (int q = 1; q <= derivative; ++q)
+        for (int r = order - 1; r >= q; --r) {
+            const int j = first + r;
+            a[r] = (order - q) * (a[r] - a[r - 1]) / (knots(j + order - q) - knots(j));
+        }
+    const int reduced = order - derivative;
+    for (int level = 1; level < reduced; ++level)
+        for (int r = order - 1; r >= derivative + level; --r) {
+            const int j = first + r;
+            const double alpha = (t - knots(j)) / (knots(j + reduced - level) - knots(j));
+            a[r] = (1 - alpha) * a[r - 1] + alpha * a[r];
+        }
+    return a[order - 1];
+}
+
+// The order-many B-splines that do not vanish on `span`, each differentiated `derivative` times, at t.
+Window basisOnSpan(const Eigen::VectorXd& knots, int order, int span, double t, int derivative) {
+    Window values{};
+    for (int r = 0; r < order; ++r) {
+        Window unit{};
+        unit[r] = 1;
+        values[r] = evalOnSpan(knots, order, span, unit, t, derivative);
+    }
+    return values;
+}
+
+// The knot span holding t for sites x: interval i = [x_i, x_{i+1}) is span order - 1 + i; the last
+// interval is closed.
+int findSpan(const Eigen::VectorXd& x, int order, double t) {
+    const Eigen::Index n = x.size();
+    const Eigen::Index i = std::upper_bound(x.data(), x.data() + n, t) - x.data() - 1;
+    return order - 1 + static_cast<int>(std::clamp<Eigen::Index>(i, 0, n - 2));
+}
+
+// Gauss-Legendre nodes and weights on [-1, 1] with m points, exact for polynomials of degree 2m - 1
+// (Abramowitz and Stegun 25.4.30); m points integrate the products of m-th derivatives exactly.
+std::vector<std::array<double, 2>> gaussLegendre(int m) {
+    switch (m) {
+        case 1: return {{0.0, 2.0}};
+        case 2: return {{-0.5773502691896257, 1.0}, {0.5773502691896257, 1.0}};
+        case 3: return {{-0.7745966692414834, 5.0 / 9}, {0.0, 8.0 / 9}, {0.7745966692414834, 5.0 / 9}};
+        default:
+            return {{-0.8611363115940526, 0.3478548451374538}, {-0.3399810435848563, 0.6521451548625461},
+                    {0.3399810435848563, 0.6521451548625461}, {0.8611363115940526, 0.3478548451374538}};
+    }
+}
+
+// A symmetric banded matrix of half-bandwidth b, lower band stored by diagonals: band(d, i) = A(i + d, i).
+struct SymmetricBand {
+    int b = 0;
+    Eigen::MatrixXd band;
+
+    int size() const { return static_cast<int>(band.cols()); }
+    static SymmetricBand fromSparse(const SparseMatrix& a, int b) {
+        SymmetricBand s{b, Eigen::MatrixXd::Zero(b + 1, a.cols())};
+        for (int j = 0; j < a.outerSize(); ++j)
+            for (SparseMatrix::InnerIterator it(a, j); it; ++it)
+                if (it.row() >= j) s.band(it.row() - j, j) = it.value();
+        return s;
+    }
+    // sum_ij A_ij C_ij over the full symmetric matrices
+    double dot(const SymmetricBand& c) const {
+        return band.row(0).dot(c.band.row(0)) + 2 * band.bottomRows(b).cwiseProduct(c.band.bottomRows(b)).sum();
+    }
+};
+
+// In-place A = L D L^T (L unit lower triangular with the band of A): afterwards band(0, i) = D_i and
+// band(d, i) = L(i + d, i). False if a pivot is not positive (A not numerically positive definite).
+bool factorLDLT(SymmetricBand& a) {
+    const int n = a.size(), b = a.b;
+    auto L = [&](int i, int k) -> double& { return a.band(i - k, k); };
+    for (int j = 0; j < n; ++j) {
+        for (int k = std::max(0, j - b); k < j; ++k) a.band(0, j) -= L(j, k) * L(j, k) * a.band(0, k);
+        if (!(a.band(0, j) > 0)) return false;
+        for (int i = j + 1; i <= std::min(n - 1, j + b); ++i) {
+            for (int k = std::max(0, i - b); k < j; ++k) L(i, j) -= L(i, k) * L(j, k) * a.band(0, k);
+            L(i, j) /= a.band(0, j);
+        }
+    }
+    return true;
+}
+
+Eigen::VectorXd solveLDLT(const SymmetricBand& f, Eigen::VectorXd x) {
+    const int n = f.size(), b = f.b;
+    for (int i = 0; i < n; ++i)
+        for (int k = std::max(0, i - b); k < i; ++k) x(i) -= f.band(i - k, k) * x(k);
+    x.array() /= f.band.row(0).transpose().array();
+    for (int i = n - 1; i >= 0; --i)
+        for (int k = i + 1; k <= std::min(n - 1, i + b); ++k) x(i) -= f.band(k - i, i) * x(k);
+    return x;
+}
+
+// The band of A^-1 from A = L D L^T, by the recurrence A^-1 = D^-1 L^-1 + (I - L^T) A^-1 run from the last
+// row up (Hutchinson and de Hoog 1985; Erisman and Tinney 1975): O(n b^2), never the full inverse.
+SymmetricBand bandOfInverse(const SymmetricBand& f) {
+    const int n = f.size(), b = f.b;
+    SymmetricBand z{b, Eigen::MatrixXd::Zero(b + 1, n)};
+    auto Z = [&](int i, int j) { return i <= j ? z.band(j - i, i) : z.band(i - j, j); };
+    for (int i = n - 1; i >= 0; --i) {
+        const int last = std::min(n - 1, i + b);
+        for (int j = last; j > i; --j) {
+            double zij = 0;
+            for (int k = i + 1; k <= last; ++k) zij -= f.band(k - i, i) * Z(k, j);
+            z.band(j - i, i) = zij;
+        }
+        double zii = 1 / f.band(0, i);
+        for (int k = i + 1; k <= last; ++k) zii -= f.band(k - i, i) * Z(k, i);
+        z.band(0, i) = zii;
+    }
+    return z;
+}
+
+std::string sample(const char* what, Eigen::Index i, double value) {
+    return std::string(what) + "[" + std::to_string(i) + "] = " + std::to_string(value);
+}
+
+}  // namespace
+
+// The fit of one data set for any smoothing parameter p. The spline lives in the natural subspace of the
+// B-spline space (knots at the sites, order 2m) spanned by n basis functions N_c = sum_g Z(g, c) B_g that
+// satisfy s^(j)(x_0) = s^(j)(x_{n-1}) = 0 for j = m..2m-2. With N(i, c) = N_c(x_i), W = diag(w) and
+// P(c, d) = integral N_c^(m) N_d^(m), the minimizer has coefficients solving (H + p P) c = N^T W y,
+// H = N^T W N; both are banded and H is positive definite (N is square and nonsingular), so p = 0 is the
+// interpolant. Derivation in docs/signal-processing.md.
+class NaturalSplineFitter {
+public:
+    struct Trial {
+        bool solved = false;  // false where H + p P is not numerically positive definite (p far too large)
+        double p = 0;
+        Eigen::VectorXd c;  // natural-basis coefficients (n)
+        double meanSquaredResidual = 0;
+        double residualDegreesOfFreedom = 0;  // n - trace(A) = p trace((H + p P)^-1 P)
+    };
+
+    NaturalSplineFitter(int degree, const Eigen::Ref<const Eigen::VectorXd>& x,
+                        const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::Ref<const Eigen::VectorXd>& weights)
+        : x_(x), y_(y) {
+        if (degree < 1 || degree > 2 * SmoothingSpline::kMaxHalfOrder - 1 || degree % 2 == 0)
+            throw Error("smoothing spline: degree " + std::to_string(degree) + "; expected 1, 3, 5 or 7");
+        m_ = (degree + 1) / 2;
+        n_ = static_cast<int>(x.size());
+        if (n_ < 2 * m_)
+            throw Error("smoothing spline: " + std::to_string(n_) + " samples; degree " + std::to_string(degree) +
+                        " needs at least " + std::to_string(2 * m_));
+        if (y.size() != x.size())
+            throw Error("smoothing spline: " + std::to_string(y.size()) + " values for " + std::to_string(n_) + " sites");
+        w_ = weights.size() == 0 ? Eigen::VectorXd::Ones(n_) : Eigen::VectorXd(weights);
+        if (w_.size() != n_)
+            throw Error("smoothing spline: " + std::to_string(w_.size()) + " weights for " + std::to_string(n_) + " sites");
+        for (Eigen::Index i = 0; i < n_; ++i) {
+            if (!std::isfinite(x_(i))) throw Error("smoothing spline: site " + sample("x", i, x_(i)) + " is not finite");
+            if (!std::isfinite(y_(i))) throw Error("smoothing spline: value " + sample("y", i, y_(i)) + " is not finite");
+            if (!(std::isfinite(w_(i)) && w_(i) > 0))
+                throw Error("smoothing spline: weight " + sample("w", i, w_(i)) + "; expected a finite value > 0");
+            if (i > 0 && !(x_(i) > x_(i - 1)))
+                throw Error("smoothing spline: " + sample("x", i, x_(i)) + " does not exceed " +
+                            sample("x", i - 1, x_(i - 1)) + "; the sites must be strictly increasing");
+        }
+        const int order = 2 * m_, count = n_ + 2 * m_ - 2;  // B-spline order and number of B-splines
+        knots_.resize(count + order);
+        knots_.head(order).setConstant(x_(0));
+        knots_.segment(order, n_ - 2) = x_.segment(1, n_ - 2);
+        knots_.tail(order).setConstant(x_(n_ - 1));
+
+        const SparseMatrix Z = buildNaturalBasis(order, count);
+        Triplets collocation;
+        for (int i = 0; i < n_; ++i) {
+            const int span = findSpan(x_, order, x_(i));
+            const Window values = basisOnSpan(knots_, order, span, x_(i), 0);
+            for (int r = 0; r < order; ++r)
+                if (values[r] != 0) collocation.emplace_back(i, span - order + 1 + r, values[r]);
+        }
+        SparseMatrix B(n_, count);
+        B.setFromTriplets(collocation.begin(), collocation.end());
+        N_ = B * Z;
+        const SparseMatrix H = SparseMatrix(N_.transpose() * w_.asDiagonal() * N_);
+        const SparseMatrix P = SparseMatrix(Z.transpose() * buildRoughness(order, count) * Z);
+        int b = 0;
+        for (const SparseMatrix* a : {&H, &P})
+            for (int j = 0; j < a->outerSize(); ++j)
+                for (SparseMatrix::InnerIterator it(*a, j); it; ++it) b = std::max(b, static_cast<int>(it.row()) - j);
+        H_ = SymmetricBand::fromSparse(H, b);
+        P_ = SymmetricBand::fromSparse(P, b);
+        rhs_ = N_.transpose() * w_.cwiseProduct(y_);
+        Z_ = Z;
+    }
+
+    // p that weighs the roughness like the data term: trace(H) / trace(P).
+    double naturalScale() const { return H_.band.row(0).sum() / P_.band.row(0).sum(); }
+
+    Trial solve(double p) const {
+        SymmetricBand g{H_.b, H_.band + p * P_.band};
+        Trial trial;
+        trial.p = p;
+        if (!factorLDLT(g)) return trial;
+        trial.solved = true;
+        trial.c = solveLDLT(g, rhs_);
+        const Eigen::VectorXd residual = y_ - N_ * trial.c;
+        trial.meanSquaredResidual = residual.cwiseAbs2().dot(w_) / n_;
+        trial.residualDegreesOfFreedom = p > 0 ? p * bandOfInverse(g).dot(P_) : 0.0;
+        return trial;
+    }
+
+    SmoothingSpline makeSpline(const Trial& trial) const {
+        SmoothingSpline s;
+        s.halfOrder_ = m_;
+        s.x_ = x_;
+        s.knots_ = knots_;
+        s.coefficients_ = Z_ * trial.c;
+        s.smoothingParameter_ = trial.p;
+        s.meanSquaredResidual_ = trial.meanSquaredResidual;
+        s.residualDegreesOfFreedom_ = trial.residualDegreesOfFreedom;
+        return s;
+    }
+
+    int size() const { return n_; }
+
+private:
+    // Z (B-splines x natural basis). At each end only the 2m - 1 B-splines nearest to it have derivatives of
+    // order m..2m-2 there; their coefficients must satisfy the m - 1 natural conditions, and an orthonormal
+    // basis of that null space (m vectors, from the SVD of the row-normalized conditions) gives m
+    // well-scaled natural basis functions. (Solving for some coefficients in terms of others instead gives
+    // combinations with coefficients ~ 1/h^(m-1) and a badly conditioned system.) The other B-splines are
+    // natural already.
+    SparseMatrix buildNaturalBasis(int order, int count) const {
+        Triplets z;
+        for (int g = 2 * m_ - 1; g <= count - 2 * m_; ++g) z.emplace_back(g, g - m_ + 1, 1.0);
+        for (const bool left : {true, false}) {
+            const int span = left ? order - 1 : count - 1;
+            const double end = left ? x_(0) : x_(n_ - 1);
+            // B-spline s counted from this end: its global index, and the natural basis column of free vector s
+            auto global = [&](int s) { return left ? s : count - 1 - s; };
+            auto column = [&](int s) { return left ? s : n_ - 1 - s; };
+            Eigen::MatrixXd conditions = Eigen::MatrixXd::Zero(std::max(m_ - 1, 1), 2 * m_ - 1);
+            for (int q = 0; q < m_ - 1; ++q) {
+                const Window d = basisOnSpan(knots_, order, span, end, m_ + q);
+                for (int s = 0; s < 2 * m_ - 1; ++s) conditions(q, s) = d[global(s) - (span - order + 1)];
+                conditions.row(q).normalize();
+            }
+            const Eigen::JacobiSVD<Eigen::MatrixXd> svd(conditions, Eigen::ComputeFullV);
+            const Eigen::MatrixXd nullSpace = svd.matrixV().rightCols(m_);
+            for (int f = 0; f < m_; ++f)
+                for (int s = 0; s < 2 * m_ - 1; ++s) z.emplace_back(global(s), column(f), nullSpace(s, f));
+        }
+        SparseMatrix Z(count, n_);
+        Z.setFromTriplets(z.begin(), z.end());
+        return Z;
+    }
+
+    // Omega(g, h) = integral over [x_0, x_{n-1}] of B_g^(m) B_h^(m), interval by interval.
+    SparseMatrix buildRoughness(int order, int count) const {
+        const auto rule = gaussLegendre(m_);
+        Triplets omega;
+        for (int i = 0; i + 1 < n_; ++i) {
+            const int span = order - 1 + i, first = span - order + 1;
+            const double half = (x_(i + 1) - x_(i)) / 2;
+            for (const auto& [node, weight] : rule) {
+                const Window d = basisOnSpan(knots_, order, span, x_(i) + half * (1 + node), m_);
+                for (int r = 0; r < order; ++r)
+                    for (int s = 0; s < order; ++s) omega.emplace_back(first + r, first + s, weight * half * d[r] * d[s]);
+            }
+        }
+        SparseMatrix omegaMatrix(count, count);
+        omegaMatrix.setFromTriplets(omega.begin(), omega.end());
+        return omegaMatrix;
+    }
+
+    int m_ = 0, n_ = 0;
+    Eigen::VectorXd x_, y_, w_, knots_, rhs_;
+    SparseMatrix Z_, N_;
+    SymmetricBand H_, P_;
+};
+
+namespace {
+
+// The trial minimizing `criterion` over p = scale 10^e, scale = trace(H) / trace(P): e on a grid from -10
+// (interpolation for all practical purposes) to 10 (near the polynomial limit; beyond it the polynomial
+// part of the solution drowns in rounding, as in GCVSPL), then a golden-section search in e around the
+// best grid point down to 1e-6. With `tryInterpolation`, p = 0 competes too.
+template <typename Criterion>
+NaturalSplineFitter::Trial minimize(const NaturalSplineFitter& fitter, Criterion criterion, bool tryInterpolation) {
+    const double scale = fitter.naturalScale();
+    constexpr double lowest = -10, highest = 10, step = 0.25;
+    auto trialAt = [&](double e) { return fitter.solve(scale * std::pow(10.0, e)); };
+    auto valueOf = [&](const NaturalSplineFitter::Trial& t) {
+        return t.solved ? criterion(t) : std::numeric_limits<double>::infinity();
+    };
+    NaturalSplineFitter::Trial best = fitter.solve(0);
+    double bestValue = tryInterpolation ? criterion(best) : std::numeric_limits<double>::infinity(), bestE = lowest;
+    for (double e = lowest; e <= highest; e += step) {
+        NaturalSplineFitter::Trial trial = trialAt(e);
+        const double value = valueOf(trial);
+        if (value < bestValue) best = std::move(trial), bestValue = value, bestE = e;
+    }
+    if (best.p == 0) return best;
+    const double goldenFraction = (std::sqrt(5.0) - 1) / 2;
+    double a = std::max(lowest, bestE - step), d = std::min(highest, bestE + step);
+    double b = d - goldenFraction * (d - a), c = a + goldenFraction * (d - a);
+    NaturalSplineFitter::Trial tb = trialAt(b), tc = trialAt(c);
+    double fb = valueOf(tb), fc = valueOf(tc);
+    while (d - a > 1e-6) {
+        if (fb <= fc) {
+            d = c, c = b, tc = std::move(tb), fc = fb;
+            b = d - goldenFraction * (d - a), tb = trialAt(b), fb = valueOf(tb);
+        } else {
+            a = b, b = c, tb = std::move(tc), fb = fc;
+            c = a + goldenFraction * (d - a), tc = trialAt(c), fc = valueOf(tc);
+        }
+    }
+    if (fb < bestValue) best = std::move(tb), bestValue = fb;
+    if (fc < bestValue) best = std::move(tc);
+    return best;
+}
+
+}  // namespace
+
+SmoothingSpline SmoothingSpline::fitForSmoothingParameter(int degree, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                          const Eigen::Ref<const Eigen::VectorXd>& y, double p,
+                                                          const Eigen::Ref<const Eigen::VectorXd>& weights) {
+    const NaturalSplineFitter fitter(degree, x, y, weights);
+    if (!(std::isfinite(p) && p >= 0))
+        throw Error("smoothing spline: smoothing parameter " + std::to_string(p) + "; expected a finite value >= 0");
+    const NaturalSplineFitter::Trial trial = fitter.solve(p);
+    if (!trial.solved)
+        throw Error("smoothing spline: smoothing parameter " + std::to_string(p) + " is beyond what double precision " +
+                    "resolves for these sites (p trace(P) / trace(H) = " + std::to_string(p / fitter.naturalScale()) + ")");
+    return fitter.makeSpline(trial);
+}
+
+SmoothingSpline SmoothingSpline::fitFromGCV(int degree, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                            const Eigen::Ref<const Eigen::VectorXd>& y,
+                                            const Eigen::Ref<const Eigen::VectorXd>& weights) {
+    const NaturalSplineFitter fitter(degree, x, y, weights);
+    const double n = fitter.size();
+    auto gcv = [n](const NaturalSplineFitter::Trial& t) {
+        const double dofFraction = t.residualDegreesOfFreedom / n;
+        return t.meanSquaredResidual / (dofFraction * dofFraction);
+    };
+    return fitter.makeSpline(minimize(fitter, gcv, false));
+}
+
+SmoothingSpline SmoothingSpline::fitFromErrorVariance(int degree, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                      const Eigen::Ref<const Eigen::VectorXd>& y, double variance,
+                                                      const Eigen::Ref<const Eigen::VectorXd>& weights) {
+    const NaturalSplineFitter fitter(degree, x, y, weights);
+    if (!(std::isfinite(variance) && variance >= 0))
+        throw Error("smoothing spline: error variance " + std::to_string(variance) +
+                    "; expected a finite value >= 0 (use fitFromGCV when it is unknown)");
+    // With no error the estimated mean squared error is the residual alone, smallest when interpolating.
+    if (variance == 0) return fitter.makeSpline(fitter.solve(0));  // p = 0: H alone is positive definite
+    const double n = fitter.size();
+    auto meanSquaredError = [n, variance](const NaturalSplineFitter::Trial& t) {
+        return t.meanSquaredResidual - variance * (2 * t.residualDegreesOfFreedom / n - 1);
+    };
+    return fitter.makeSpline(minimize(fitter, meanSquaredError, true));
+}
+
+double SmoothingSpline::calcValue(double t) const { return calcDerivative(t, 0); }
+
+double SmoothingSpline::calcDerivative(double t, int order) const {
+    if (order < 0) throw Error("smoothing spline: derivative order " + std::to_string(order) + "; expected >= 0");
+    if (!std::isfinite(t)) throw Error("smoothing spline: evaluated at a non-finite time");
+    const int k = 2 * halfOrder_;
+    const Eigen::Index n = x_.size();
+    const bool before = t < x_(0), after = t > x_(n - 1);
+    const int span = findSpan(x_, k, before ? x_(0) : after ? x_(n - 1) : t);
+    Window window{};
+    for (int r = 0; r < k; ++r) window[r] = coefficients_(span - k + 1 + r);
+    if (!before && !after) return evalOnSpan(knots_, k, span, window, t, order);
+    // Natural continuation: the Taylor polynomial of degree m - 1 at the end.
+    const double end = before ? x_(0) : x_(n - 1);
+    double sum = 0, term = 1;
+    for (int j = order; j < halfOrder_; ++j) {
+        sum += evalOnSpan(knots_, k, span, window, end, j) * term;
+        term *= (t - end) / (j - order + 1);
+    }
+    return sum;
+}
+
+double SmoothingSpline::getGeneralizedCrossValidation() const {
+    if (residualDegreesOfFreedom_ <= 0) return std::numeric_limits<double>::quiet_NaN();
+    const double dofFraction = residualDegreesOfFreedom_ / static_cast<double>(x_.size());
+    return meanSquaredResidual_ / (dofFraction * dofFraction);
+}
+
+double SmoothingSpline::getErrorVarianceEstimate() const {
+    if (residualDegreesOfFreedom_ <= 0) return std::numeric_limits<double>::quiet_NaN();
+    return meanSquaredResidual_ * static_cast<double>(x_.size()) / residualDegreesOfFreedom_;
+}
+
+}  // namespace sinew

@@ -1,0 +1,336 @@
+#include "sinew/core/virtual_link_equilibrium.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "sinew/core/error.hpp"
+
+namespace sinew {
+namespace {
+
+constexpr int kMaxIterations = 50;
+constexpr int kMaxHalvings = 60;  // line search: the step is halved at most this often (see the jump, below)
+constexpr double kResidualTolerance = 1e-11;  // of the load on the link
+constexpr double kTwistTolerance = 1e-9;      // relative change of the twist between iterations
+constexpr double kRegularisation = 1e-12;     // of the largest stiffness entry, added to its diagonal
+constexpr double kMinSegment = 1e-12;         // m, a shorter segment has no direction (as in calcWirePaths)
+
+double calcTensionOf(const Wire& wire, double length, double speed, double time) {
+    try {
+        return wire.law->calcTension(WireState{length, speed, time});
+    } catch (const Error& e) {
+        throw Error("wire '" + wire.name + "': " + e.what());
+    }
+}
+
+// The change of eq.residual (scaled) when the wire points of eq.wires move by eq.dp_GP at fixed wire speeds,
+// into `out`. The virtual link in slot movedSlot (or none, -1) moves rigidly with its origin displaced by
+// dOrigin, so its moment arms change by dp_GP - dOrigin; the other virtual links' points must not move.
+// With f = -T g at each point (g = dL/dp = e_in - e_out): df = -T' dL g - T (de_in - de_out), where
+// dL = sum over the wire's points of g . dp and de = (1 - e e^T) d(segment) / l.
+void calcResidualDerivative(const Model& model, const Data& data, VirtualLinkEquilibriumData& eq, int movedSlot,
+                            const Eigen::Vector3d& dOrigin, Eigen::Ref<Eigen::VectorXd> out) {
+    const std::vector<WirePoint>& points = model.getWirePoints();
+    out.setZero();
+    for (int w : eq.wires) {
+        const Wire& wire = model.getWire(w);
+        const std::size_t first = static_cast<std::size_t>(wire.firstPoint);
+        const std::size_t last = first + static_cast<std::size_t>(wire.numPoints) - 1;
+        double dL = 0;
+        for (std::size_t k = first; k <= last; ++k) dL += data.dLdp_GP[k].dot(eq.dp_GP[k]);
+        for (std::size_t k = first; k < last; ++k) {
+            const Eigen::Vector3d& e = eq.segmentDirection[k];
+            const Eigen::Vector3d relative = eq.dp_GP[k + 1] - eq.dp_GP[k];
+            eq.dSegmentDirection[k] = eq.segmentLength[k] > kMinSegment
+                                          ? Eigen::Vector3d((relative - e * e.dot(relative)) / eq.segmentLength[k])
+                                          : Eigen::Vector3d::Zero();
+        }
+        const double T = eq.tension[w], dT = eq.tensionSlope[w] * dL;
+        for (std::size_t k = first; k <= last; ++k) {
+            const int slot = eq.slotOfLink[static_cast<std::size_t>(points[k].link)];
+            if (slot < 0) continue;
+            const std::size_t v = static_cast<std::size_t>(points[k].link), s = static_cast<std::size_t>(slot);
+            Eigen::Vector3d dg = Eigen::Vector3d::Zero();
+            if (k > first) dg += eq.dSegmentDirection[k - 1];
+            if (k < last) dg -= eq.dSegmentDirection[k];
+            const Eigen::Vector3d f = -T * data.dLdp_GP[k];
+            const Eigen::Vector3d df = -dT * data.dLdp_GP[k] - T * dg;
+            const Eigen::Vector3d r = data.R_GB[v] * points[k].p_B;
+            const Eigen::Vector3d dr = slot == movedSlot ? Eigen::Vector3d(eq.dp_GP[k] - dOrigin) : Eigen::Vector3d::Zero();
+            out.segment<3>(6 * slot) += (dr.cross(f) + r.cross(df)) / eq.lengthScale[s];
+            out.segment<3>(6 * slot + 3) += df;
+        }
+    }
+}
+
+// Per virtual link, the largest residual entry and the sum of the magnitudes of its wire forces.
+void measureResidual(const Model& model, const Data& data, const VirtualLinkEquilibriumData& eq, int slot,
+                     double& residual, double& load) {
+    residual = eq.residual.segment<6>(6 * slot).lpNorm<Eigen::Infinity>();
+    load = 0;
+    for (int w : eq.wires) {
+        const Wire& wire = model.getWire(w);
+        for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k)
+            if (model.getWirePoints()[static_cast<std::size_t>(k)].link == eq.links[static_cast<std::size_t>(slot)])
+                load += eq.tension[w] * data.dLdp_GP[static_cast<std::size_t>(k)].norm();
+    }
+}
+
+// True when every virtual link's residual is within tolerance of its load; fills the status's measures.
+bool measureStatus(const Model& model, const Data& data, VirtualLinkEquilibriumData& eq) {
+    VirtualLinkEquilibriumStatus& status = eq.status;
+    status.residual = status.forceScale = 0;
+    status.slackLinks = 0;
+    bool within = true;
+    for (int s = 0; s < static_cast<int>(eq.links.size()); ++s) {
+        double residual = 0, load = 0;
+        measureResidual(model, data, eq, s, residual, load);
+        status.residual = std::max(status.residual, residual);
+        status.forceScale = std::max(status.forceScale, load);
+        if (load == 0) ++status.slackLinks;
+        within = within && residual <= kResidualTolerance * load;
+    }
+    return within;
+}
+
+// Moves virtual link s from (R0, p0) by the scaled step [l dtheta; dp] times alpha: R = exp(dtheta) R0,
+// kept orthonormal through a normalised quaternion (the Simbody plugin keeps poses across many solves).
+void displacePose(Data& data, const VirtualLinkEquilibriumData& eq, std::size_t s, double alpha) {
+    const std::size_t v = static_cast<std::size_t>(eq.links[s]);
+    const Eigen::Vector3d dtheta = alpha * eq.step.segment<3>(6 * static_cast<Eigen::Index>(s)) / eq.lengthScale[s];
+    const double angle = dtheta.norm();
+    const Eigen::Quaterniond rotation =
+        angle > 0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, dtheta / angle)) : Eigen::Quaterniond::Identity();
+    data.R_GB[v] = (rotation * Eigen::Quaterniond(eq.R_GV0[s])).normalized().toRotationMatrix();
+    data.p_GB[v] = eq.p_GV0[s] + alpha * eq.step.segment<3>(6 * static_cast<Eigen::Index>(s) + 3);
+}
+
+}  // namespace
+
+VirtualLinkEquilibriumData::VirtualLinkEquilibriumData(const Model& model)
+    : slotOfLink(static_cast<std::size_t>(model.getNumLinks()), -1) {
+    for (int i = 0; i < model.getNumLinks(); ++i)
+        if (model.getLink(i).isVirtual) {
+            slotOfLink[static_cast<std::size_t>(i)] = static_cast<int>(links.size());
+            links.push_back(i);
+        }
+    const std::vector<WirePoint>& points = model.getWirePoints();
+    std::vector<double> sumSquares(links.size(), 0.0);
+    std::vector<int> count(links.size(), 0);
+    for (int w = 0; w < model.getNumWires(); ++w) {
+        const Wire& wire = model.getWire(w);
+        bool touches = false;
+        for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
+            const WirePoint& point = points[static_cast<std::size_t>(k)];
+            const int slot = slotOfLink[static_cast<std::size_t>(point.link)];
+            if (slot < 0) continue;
+            touches = true;
+            sumSquares[static_cast<std::size_t>(slot)] += point.p_B.squaredNorm();
+            ++count[static_cast<std::size_t>(slot)];
+        }
+        if (!touches) continue;
+        // The solver differentiates the straight segments between fixed points.
+        if (!wire.isPolyline())
+            throw Error("wire '" + wire.name + "' passes through a virtual link and has conditional, moving or "
+                        "wrapping path points; wires through virtual links must be plain polylines");
+        wires.push_back(w);
+    }
+    for (std::size_t s = 0; s < links.size(); ++s) {
+        const double rms = count[s] > 0 ? std::sqrt(sumSquares[s] / count[s]) : 0.0;
+        lengthScale.push_back(rms > 0 ? rms : 1.0);
+    }
+    const Eigen::Index n = 6 * static_cast<Eigen::Index>(links.size());
+    residual = Eigen::VectorXd::Zero(n);
+    stiffness = Eigen::MatrixXd::Zero(n, n);
+    boneRate = Eigen::VectorXd::Zero(n);
+    step = Eigen::VectorXd::Zero(n);
+    twist = Eigen::VectorXd::Zero(n);
+    factor = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+    tension = Eigen::VectorXd::Zero(model.getNumWires());
+    tensionSlope = Eigen::VectorXd::Zero(model.getNumWires());
+    segmentDirection.assign(points.size(), Eigen::Vector3d::Zero());
+    segmentLength.assign(points.size(), 0.0);
+    dp_GP.assign(points.size(), Eigen::Vector3d::Zero());
+    dSegmentDirection.assign(points.size(), Eigen::Vector3d::Zero());
+    R_GV0.assign(links.size(), Eigen::Matrix3d::Identity());
+    p_GV0.assign(links.size(), Eigen::Vector3d::Zero());
+}
+
+void calcVirtualLinkResidual(const Model& model, Data& data, double time, VirtualLinkEquilibriumData& eq) {
+    const std::vector<WirePoint>& points = model.getWirePoints();
+    for (int v : eq.links) data.p_GM[static_cast<std::size_t>(v)] = data.p_GB[static_cast<std::size_t>(v)];
+    eq.residual.setZero();
+    for (int w : eq.wires) {
+        const Wire& wire = model.getWire(w);
+        const std::size_t first = static_cast<std::size_t>(wire.firstPoint);
+        const std::size_t last = first + static_cast<std::size_t>(wire.numPoints) - 1;
+        // Points on virtual links follow their links; those on bones are the caller's.
+        for (std::size_t k = first; k <= last; ++k) {
+            const std::size_t v = static_cast<std::size_t>(points[k].link);
+            if (eq.slotOfLink[v] < 0) continue;
+            const Eigen::Vector3d r = data.R_GB[v] * points[k].p_B;
+            data.p_GP[k] = data.p_GB[v] + r;
+            data.v_GP[k] = data.v_GB[v] + data.w_GB[v].cross(r);
+        }
+        // The path as calcWirePaths and calcWireSpeeds make it, keeping each segment's direction and length.
+        double length = 0, speed = 0;
+        Eigen::Vector3d e_in = Eigen::Vector3d::Zero();
+        for (std::size_t k = first; k < last; ++k) {
+            const Eigen::Vector3d segment = data.p_GP[k + 1] - data.p_GP[k];
+            const double l = segment.norm();
+            const Eigen::Vector3d e_out = l > kMinSegment ? Eigen::Vector3d(segment / l) : Eigen::Vector3d::Zero();
+            eq.segmentLength[k] = l;
+            eq.segmentDirection[k] = e_out;
+            data.dLdp_GP[k] = e_in - e_out;
+            length += l;
+            e_in = e_out;
+        }
+        data.dLdp_GP[last] = e_in;
+        for (std::size_t k = first; k <= last; ++k) speed += data.dLdp_GP[k].dot(data.v_GP[k]);
+        data.wireLength[w] = length;
+        data.wireSpeed[w] = speed;
+        // The law's slope by central differences (laws give tensions only); a step of 1e-6 of the length keeps
+        // truncation and roundoff near 1e-10 of the slope for smooth laws.
+        const double T = calcTensionOf(wire, length, speed, time);
+        const double h = 1e-6 * std::max(length, 1e-3);
+        eq.tension[w] = T;
+        eq.tensionSlope[w] =
+            (calcTensionOf(wire, length + h, speed, time) - calcTensionOf(wire, length - h, speed, time)) / (2 * h);
+        for (std::size_t k = first; k <= last; ++k) {
+            const std::size_t v = static_cast<std::size_t>(points[k].link);
+            const int slot = eq.slotOfLink[v];
+            if (slot < 0) continue;
+            const Eigen::Vector3d f = -T * data.dLdp_GP[k];
+            eq.residual.segment<3>(6 * slot) += (data.R_GB[v] * points[k].p_B).cross(f) /
+                                                eq.lengthScale[static_cast<std::size_t>(slot)];
+            eq.residual.segment<3>(6 * slot + 3) += f;
+        }
+    }
+}
+
+void calcVirtualLinkStiffness(const Model& model, const Data& data, VirtualLinkEquilibriumData& eq) {
+    const std::vector<WirePoint>& points = model.getWirePoints();
+    // Column by column: the scaled residual's change for a unit scaled displacement of one virtual link.
+    for (std::size_t s = 0; s < eq.links.size(); ++s) {
+        const int v = eq.links[s];
+        for (int j = 0; j < 6; ++j) {
+            const Eigen::Vector3d dtheta = j < 3 ? Eigen::Vector3d(Eigen::Vector3d::Unit(j) / eq.lengthScale[s])
+                                                 : Eigen::Vector3d::Zero();
+            const Eigen::Vector3d dOrigin = j < 3 ? Eigen::Vector3d(Eigen::Vector3d::Zero()) : Eigen::Vector3d(Eigen::Vector3d::Unit(j - 3));
+            for (int w : eq.wires) {
+                const Wire& wire = model.getWire(w);
+                for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
+                    const std::size_t kk = static_cast<std::size_t>(k);
+                    eq.dp_GP[kk] = points[kk].link == v
+                                       ? Eigen::Vector3d(dOrigin + dtheta.cross(data.R_GB[static_cast<std::size_t>(v)] *
+                                                                                points[kk].p_B))
+                                       : Eigen::Vector3d::Zero();
+                }
+            }
+            calcResidualDerivative(model, data, eq, static_cast<int>(s), dOrigin,
+                                   eq.stiffness.col(6 * static_cast<Eigen::Index>(s) + j));
+        }
+    }
+    eq.stiffness = -eq.stiffness;
+    // The bones' motion with the virtual links held still.
+    for (int w : eq.wires) {
+        const Wire& wire = model.getWire(w);
+        for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
+            const std::size_t kk = static_cast<std::size_t>(k);
+            eq.dp_GP[kk] = eq.slotOfLink[static_cast<std::size_t>(points[kk].link)] < 0 ? data.v_GP[kk]
+                                                                                          : Eigen::Vector3d::Zero();
+        }
+    }
+    calcResidualDerivative(model, data, eq, -1, Eigen::Vector3d::Zero(), eq.boneRate);
+}
+
+const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibrium(const Model& model, Data& data, double time,
+                                                               VirtualLinkEquilibriumData& eq) {
+    eq.status = VirtualLinkEquilibriumStatus{};
+    if (eq.links.empty()) return eq.status;
+    const std::size_t nv = eq.links.size();
+    auto setTwist = [&]() {
+        for (std::size_t s = 0; s < nv; ++s) {
+            const std::size_t v = static_cast<std::size_t>(eq.links[s]);
+            data.w_GB[v] = eq.twist.segment<3>(6 * static_cast<Eigen::Index>(s)) / eq.lengthScale[s];
+            data.v_GB[v] = eq.twist.segment<3>(6 * static_cast<Eigen::Index>(s) + 3);
+        }
+    };
+    for (std::size_t s = 0; s < nv; ++s) {
+        const std::size_t v = static_cast<std::size_t>(eq.links[s]);
+        eq.twist.segment<3>(6 * static_cast<Eigen::Index>(s)) = eq.lengthScale[s] * data.w_GB[v];
+        eq.twist.segment<3>(6 * static_cast<Eigen::Index>(s) + 3) = data.v_GB[v];
+    }
+    calcVirtualLinkResidual(model, data, time, eq);
+    double norm = eq.residual.lpNorm<Eigen::Infinity>();
+    for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+        calcVirtualLinkStiffness(model, data, eq);
+        // A small multiple of the identity keeps the solve defined where K is singular: a slack link (K and
+        // residual zero: it stays put) or one whose wires all meet at one point (no rotational stiffness).
+        const double regularisation = kRegularisation * eq.stiffness.lpNorm<Eigen::Infinity>();
+        if (regularisation == 0) {  // every wire through every virtual link is slack
+            eq.twist.setZero();
+            setTwist();
+            break;
+        }
+        eq.stiffness.diagonal().array() += regularisation;
+        eq.factor.compute(eq.stiffness);
+        // The quasi-static twist: d(residual)/dt = -K twist + boneRate = 0.
+        eq.step.noalias() = eq.factor.solve(eq.boneRate);
+        if (!eq.step.allFinite()) break;
+        const double twistChange = (eq.step - eq.twist).lpNorm<Eigen::Infinity>();
+        const bool twistSettled = twistChange <= kTwistTolerance * eq.step.lpNorm<Eigen::Infinity>();
+        if (twistChange > 0) {
+            eq.twist = eq.step;
+            setTwist();
+            calcVirtualLinkResidual(model, data, time, eq);
+            norm = eq.residual.lpNorm<Eigen::Infinity>();
+        }
+        if (twistSettled && measureStatus(model, data, eq)) {
+            eq.status.converged = true;
+            return eq.status;
+        }
+        // Newton: residual(x + step) ~ residual - K step = 0, then halved until the residual decreases.
+        eq.step.noalias() = eq.factor.solve(eq.residual);
+        if (!eq.step.allFinite()) break;
+        for (std::size_t s = 0; s < nv; ++s) {
+            eq.R_GV0[s] = data.R_GB[static_cast<std::size_t>(eq.links[s])];
+            eq.p_GV0[s] = data.p_GB[static_cast<std::size_t>(eq.links[s])];
+        }
+        double alpha = 1;
+        bool decreased = false;
+        for (int halving = 0; halving <= kMaxHalvings && !decreased; ++halving, alpha /= 2) {
+            for (std::size_t s = 0; s < nv; ++s) displacePose(data, eq, s, alpha);
+            calcVirtualLinkResidual(model, data, time, eq);
+            const double trial = eq.residual.lpNorm<Eigen::Infinity>();
+            decreased = trial < norm;
+            if (decreased) norm = trial;
+        }
+        if (decreased) ++eq.status.iterations;
+        if (!decreased) {  // stalled (at roundoff, or a kink of a law): back to the best pose
+            for (std::size_t s = 0; s < nv; ++s) displacePose(data, eq, s, 0.0);
+            calcVirtualLinkResidual(model, data, time, eq);
+            break;
+        }
+    }
+    eq.status.converged = measureStatus(model, data, eq);
+    return eq.status;
+}
+
+void getVirtualLinkCoordinates(const Model& model, const Data& data, const VirtualLinkEquilibriumData& eq,
+                               Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> u) {
+    // A virtual link's free joint joins ground's frame to the link's own (both offsets zero): R_FM = R_GB.
+    for (int v : eq.links) {
+        const Joint& joint = model.getJoint(v);
+        const std::size_t b = static_cast<std::size_t>(v);
+        Eigen::Quaterniond rotation(data.R_GB[b]);
+        if (rotation.w() < 0) rotation.coeffs() = -rotation.coeffs();
+        q.segment<4>(joint.qStart) << rotation.w(), rotation.x(), rotation.y(), rotation.z();
+        q.segment<3>(joint.qStart + 4) = data.p_GB[b];
+        u.segment<3>(joint.uStart) = data.w_GB[b];
+        u.segment<3>(joint.uStart + 3) = data.v_GB[b];
+    }
+}
+
+}  // namespace sinew

@@ -1,0 +1,54 @@
+#pragma once
+// "thelen2003_muscle": a Hill-type muscle with the curves of Thelen (2003) as OpenSim's Thelen2003Muscle
+// defines them, on a rigid tendon, so that the wire's tension is a function of its length, lengthening
+// speed and a constant activation (docs/force-laws.md, "Imported muscles"). The curve functions are public:
+// static optimization weighs activations with the same force-length and force-velocity factors.
+#include <memory>
+
+#include "sinew/core/force_law.hpp"
+
+namespace sinew {
+
+struct ThelenMuscleParameters {
+    double maxIsometricForce = 1000;    // N
+    double optimalFiberLength = 0.1;    // m
+    double tendonSlackLength = 0.2;     // m
+    double pennationAngleAtOptimal = 0; // rad
+    double maxContractionVelocity = 10; // optimal fibre lengths per second
+    double activation = 0;              // 0..1, held constant (0: passive)
+    double fmaxMuscleStrain = 0.6;      // passive strain at one max isometric force (OpenSim's FmaxMuscleStrain)
+    double kShapeActive = 0.45;         // width of the Gaussian active force-length curve
+    double kShapePassive = 4;           // exponential shape of the passive curve
+    double af = 0.25;                   // force-velocity shape (Thelen's Af)
+    double flen = 1.4;                  // lengthening force asymptote, in max isometric forces
+};
+
+// The fibre on a rigid tendon: pennated with constant thickness l_opt sin(alpha_opt).
+struct ThelenFiberState {
+    double normalizedLength = 0;    // fibre length / optimal fibre length
+    double normalizedVelocity = 0;  // fibre lengthening speed / (max contraction velocity * optimal length)
+    double cosPennation = 1;
+    double activeForceLength = 0;   // multipliers of max isometric force
+    double forceVelocity = 1;
+    double passiveForce = 0;
+};
+
+class ThelenMuscle final : public ForceLaw {
+public:
+    explicit ThelenMuscle(const ThelenMuscleParameters& parameters);
+    static std::shared_ptr<const ForceLaw> create(const ForceLawParameters& parameters);
+
+    const ThelenMuscleParameters& getParameters() const { return parameters_; }
+    // The fibre's state at a muscle-tendon length (m) and lengthening speed (m/s), the force-velocity
+    // factor taken at `activation` (Thelen's velocity scale grows with activation).
+    ThelenFiberState calcFiberState(double length, double speed, double activation) const;
+
+protected:
+    double doCalcTension(const WireState& state) const override;
+    double doCalcPotentialEnergy(double length) const override;
+
+private:
+    ThelenMuscleParameters parameters_;
+};
+
+}  // namespace sinew

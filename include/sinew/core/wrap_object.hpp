@@ -1,0 +1,36 @@
+#pragma once
+// Wrapping one straight segment of a wire over a wrap object (sphere, cylinder, ellipsoid), in the object's
+// frame W. OpenSim's decisions of whether to wrap and on which side (WrapSphere, WrapCylinder and
+// WrapEllipsoid::wrapLine, with their quadrants); exact shortest paths over spheres and cylinders, and
+// OpenSim's plane-section path over ellipsoids. docs/wire-paths.md derives them.
+#include <Eigen/Core>
+
+#include "sinew/core/model.hpp"
+
+namespace sinew {
+
+// OpenSim's outcomes: no wrap; a segment end inside the object (no wrap either); a wrap the quadrant asks
+// for although the segment misses the object; a wrap because the segment passes through it.
+enum class WrapStatus { NoWrap, InsideRadius, Wrapped, MandatoryWrap };
+
+struct WrapSolution {
+    WrapStatus status = WrapStatus::NoWrap;
+    // With Wrapped or MandatoryWrap: where the path meets the surface coming from p1 and leaves it towards
+    // p2 (m, in W), and the length over the surface between them (m).
+    Eigen::Vector3d r1_W = Eigen::Vector3d::Zero();
+    Eigen::Vector3d r2_W = Eigen::Vector3d::Zero();
+    double arcLength = 0;
+};
+
+// The segment from p1_W to p2_W (m, in W) over `object`; `method` matters for ellipsoids only.
+// Allocates nothing.
+WrapSolution calcWrap(const WrapObject& object, WrapMethod method, const Eigen::Vector3d& p1_W,
+                      const Eigen::Vector3d& p2_W);
+
+// The shapes one by one (calcWrap picks by WrapObject::shape).
+WrapSolution calcSphereWrap(const WrapObject& sphere, const Eigen::Vector3d& p1_W, const Eigen::Vector3d& p2_W);
+WrapSolution calcCylinderWrap(const WrapObject& cylinder, const Eigen::Vector3d& p1_W, const Eigen::Vector3d& p2_W);
+WrapSolution calcEllipsoidWrap(const WrapObject& ellipsoid, WrapMethod method, const Eigen::Vector3d& p1_W,
+                               const Eigen::Vector3d& p2_W);
+
+}  // namespace sinew

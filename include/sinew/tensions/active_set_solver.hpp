@@ -1,0 +1,80 @@
+#pragma once
+// The QP tension distribution by a warm-started active-set method in the DOF-dimensional torque space
+// (docs/tensions.md, "The active-set QP"):
+//
+//     min ½ Σ_j weight_j x_j² + ½ Σ_{tolerance rows} (tau - A x)_i²
+//     s.t. (A x)_i = tau_i on equality rows, lower <= x <= upper on the bounded variables,
+//
+// free variables unbounded and unweighted. It maximises the dual, a concave piecewise quadratic in the row
+// multipliers y (one per DOF), by Newton steps with exact line search; x_j = clamp(a_j^T y / weight_j) and
+// the Newton matrix is Σ + Σ_{free j} a_j a_j^T / weight_j, a rows x rows Cholesky factor that gets
+// rank-one up/down-dates as variables enter and leave their bounds. Least squares (QP) and OpenSim's static
+// optimization (static_optimization.hpp) are both this problem.
+#include <Eigen/Core>
+#include <Eigen/QR>
+#include <vector>
+
+#include "sinew/tensions/distribution_problem.hpp"
+
+namespace sinew {
+
+struct ActiveSetOptions {
+    // Converged when the dual gradient (the rows' residual of the optimality conditions) is below this
+    // times the size of the generalized forces.
+    double tolerance = 1e-11;
+    // Equality rows enter the Newton matrix with this times the mean a_j^T a_j / weight_j on the diagonal,
+    // so that the matrix stays positive definite when a DOF is unreachable; they are then met to about
+    // this relative accuracy (far below infeasibilityTolerance).
+    double equalityRegularization = 1e-12;
+    // An equality row left with a residual above this (relative to the generalized forces) makes the frame
+    // Infeasible.
+    double infeasibilityTolerance = 1e-6;
+    int maxIterations = 500;
+};
+
+// One solver per sequence of frames; it keeps the previous frame's multipliers as the warm start and its
+// buffers. Not thread-safe: one per thread.
+class ActiveSetSolver {
+public:
+    explicit ActiveSetSolver(ActiveSetOptions options = {});
+
+    // Solves `problem` (validated; throws sinew::Error when malformed) into `result`, starting from the
+    // previous frame's multipliers when the number of rows is the same.
+    void solve(const DistributionProblem& problem, DistributionResult& result);
+    // The next solve starts cold (y = 0).
+    void reset() { hasWarmStart_ = false; }
+
+private:
+    enum Regime : signed char { AtLower = -1, Free = 0, AtUpper = 1 };
+    void setUpFrame(const DistributionProblem& problem);
+    void evaluate(const DistributionProblem& problem);
+    bool factorize(const DistributionProblem& problem);
+    bool updateFactor(const DistributionProblem& problem);
+    double searchLine(const DistributionProblem& problem);
+    void toReduced(const Eigen::VectorXd& rowVector, Eigen::VectorXd& reduced);
+    void fromReduced(const Eigen::VectorXd& reduced, Eigen::VectorXd& rowVector);
+
+    ActiveSetOptions options_;
+    bool hasWarmStart_ = false;
+    int rank_ = 0;  // rank of the free variables' columns G; the dual lives in null(G^T), rows - rank_ wide
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;  // of G (rows x numFree)
+    Eigen::MatrixXd G_;                 // (rows x numFree) the free columns, dense
+    Eigen::VectorXd y_;                 // (rows) multipliers; kept between frames
+    Eigen::VectorXd sigma_;             // (rows) 1 on tolerance rows, the regulariser on equality rows
+    Eigen::VectorXd v_;                 // (numBounded) a_j^T y / weight_j: the unclamped x
+    Eigen::VectorXd x_;                 // (numBounded)
+    std::vector<Regime> regime_;        // (numBounded) at y
+    std::vector<Regime> factored_;      // (numBounded) the regimes the factor holds
+    Eigen::MatrixXd K_;                 // (rows x rows) Newton matrix before reduction
+    Eigen::MatrixXd L_;                 // (reduced) its Cholesky factor, lower
+    Eigen::VectorXd gradient_, direction_, rowWork_;  // (rows)
+    Eigen::VectorXd reducedGradient_, reducedDirection_, reducedWork_;  // (rows - rank_)
+    Eigen::VectorXd slopeOfX_;          // (numBounded) a_j^T direction
+    struct Event {
+        double t;
+        double slopeChange;
+    };
+    std::vector<Event> events_;
+};
+
+}  // namespace sinew

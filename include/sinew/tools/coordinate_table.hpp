@@ -1,0 +1,21 @@
+#pragma once
+// A motion table (.mot/.sto: IK results, simulation states) read onto a model's coordinates: columns
+// matched by name, rotational coordinates of an inDegrees table converted to radians.
+#include <Eigen/Core>
+
+#include "sinew/core/model.hpp"
+#include "sinew/io/storage_file.hpp"
+
+namespace sinew {
+
+struct CoordinateSamples {
+    Eigen::VectorXd times;  // (rows) s
+    Eigen::MatrixXd q;      // (rows x nq) rad or m, in the model's q order
+};
+
+// The model's coordinates must all be scalar (custom, pin and weld joints: q = u); the table's columns must
+// be exactly the model's coordinates, else a sinew::Error at the table's file:line lists what is missing
+// or extra.
+CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& table);
+
+}  // namespace sinew

@@ -1,0 +1,41 @@
+#pragma once
+// OpenSim's inverse dynamics tool on a sinew model: a coordinates table (e.g. inverse kinematics output)
+// processed as OpenSim processes it (padding, low-pass, quintic splines; docs/signal-processing.md), measured
+// external loads, then sinew's recursive Newton-Euler inverse dynamics per frame. The per-frame call is
+// calcInverseDynamics (include/sinew/core/inverse_dynamics.hpp); this file runs whole motions and setups.
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include "sinew/core/model.hpp"
+#include "sinew/io/external_loads.hpp"
+#include "sinew/io/storage_file.hpp"
+#include "sinew/io/tool_setup.hpp"
+
+namespace sinew {
+
+struct InverseDynamicsOptions {
+    double lowpassCutoffHz = -1;  // negative: no filtering (OpenSim's default)
+    double startTime = -std::numeric_limits<double>::infinity();  // s, OpenSim's time_range
+    double finalTime = std::numeric_limits<double>::infinity();
+    std::function<void(int frame, int frames)> onFrame;  // progress, optional
+};
+
+// Generalized forces per frame, one column per coordinate named as OpenSim names them ("<coordinate>_moment"
+// for rotational coordinates, "<coordinate>_force" otherwise). The model's coordinates must all be scalar
+// (custom, pin and weld joints: q = u); the table's columns must be exactly the model's coordinates (the
+// error lists what is missing or extra); rotational columns of an inDegrees table are converted.
+StorageTable runInverseDynamics(const Model& model, const StorageTable& coordinates, const ExternalLoads* loads,
+                                const InverseDynamicsOptions& options);
+
+// An OpenSim InverseDynamicsTool setup as it stands: reads its model (.osim or sinew YAML), coordinates and
+// external loads with paths relative to the setup file, runs, and writes results_directory/
+// output_gen_force_file (or into outputDirectory when given). Returns the file written. Forces other than
+// the measured loads and gravity never enter sinew's inverse dynamics, as with forces_to_exclude "Muscles";
+// `notes` receives what the run left out or could not honour.
+std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std::string& outputDirectory,
+                                   const std::function<void(const std::string&)>& notes,
+                                   const std::function<void(int frame, int frames)>& onFrame = {});
+
+}  // namespace sinew

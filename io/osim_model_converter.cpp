@@ -1,0 +1,284 @@
+#include "sinew/io/osim_model_converter.hpp"
+
+#include <array>
+#include <cmath>
+
+#include "sinew/core/error.hpp"
+#include "sinew/core/model_builder.hpp"
+
+namespace sinew {
+namespace {
+
+std::string describe(const std::string& type, const std::string& name, const std::string& where) {
+    return type + " '" + name + "' (" + where + ")";
+}
+
+// OpenSim's fixed-axis joints written as CustomJoint SpatialTransforms (docs/opensim-import.md): for each
+// of rotation1-3 and translation1-3, the axis in F and the index of the joint coordinate driving it
+// (-1: none). Rotation axes are listed even when unused because a SpatialTransform needs three
+// independent ones.
+struct AxisTable {
+    std::array<Eigen::Vector3d, 6> axes;
+    std::array<int, 6> coordinate;
+};
+
+AxisTable getAxisTable(OsimJointType type) {
+    const Eigen::Vector3d x = Eigen::Vector3d::UnitX(), y = Eigen::Vector3d::UnitY(), z = Eigen::Vector3d::UnitZ();
+    switch (type) {
+        case OsimJointType::Pin: return {{z, x, y, x, y, z}, {0, -1, -1, -1, -1, -1}};
+        case OsimJointType::Slider: return {{x, y, z, x, y, z}, {-1, -1, -1, 0, -1, -1}};
+        case OsimJointType::Universal: return {{x, y, z, x, y, z}, {0, 1, -1, -1, -1, -1}};
+        case OsimJointType::Ball:
+        case OsimJointType::Gimbal: return {{x, y, z, x, y, z}, {0, 1, 2, -1, -1, -1}};
+        case OsimJointType::Planar: return {{z, x, y, x, y, z}, {0, -1, -1, 1, 2, -1}};
+        case OsimJointType::Free: return {{x, y, z, x, y, z}, {0, 1, 2, 3, 4, 5}};
+        case OsimJointType::Custom:
+        case OsimJointType::Weld: break;
+    }
+    throw Error(std::string("no axis table for OpenSim joint type ") + toString(type));
+}
+
+std::string linkName(const OsimModel& osim, const std::string& body) {
+    return body == osim.ground.name ? std::string("ground") : body;
+}
+
+LinkSpec convertBody(const OsimBody& body) {
+    LinkSpec link;
+    link.name = body.name;
+    link.mass = body.mass;
+    link.com_B = body.massCenter;
+    const auto& I = body.inertia;  // Ixx Iyy Izz Ixy Ixz Iyz
+    link.inertia_Bcom << I[0], I[3], I[4], I[3], I[1], I[5], I[4], I[5], I[2];
+    link.where = body.where;
+    return link;
+}
+
+CoordinateSpec convertCoordinate(const OsimCoordinate& c) {
+    CoordinateSpec spec;
+    spec.name = c.name;
+    spec.defaultValue = c.defaultValue;
+    spec.rangeMin = c.rangeMin;
+    spec.rangeMax = c.rangeMax;
+    spec.clamped = c.clamped;
+    spec.locked = c.locked;
+    spec.where = c.where;
+    return spec;
+}
+
+JointSpec convertJoint(const OsimModel& osim, const OsimJoint& oj) {
+    JointSpec js;
+    js.name = oj.name;
+    js.parent = linkName(osim, oj.parent.body);
+    js.child = oj.child.body;
+    js.p_PF = oj.parent.p_BF;
+    js.R_PF = oj.parent.R_BF;
+    js.p_BM = oj.child.p_BF;
+    js.R_BM = oj.child.R_BF;
+    js.where = oj.where;
+    if (oj.type == OsimJointType::Weld) {
+        js.type = JointType::Weld;
+        return js;
+    }
+    js.type = JointType::Custom;
+    for (int c = 0; c < oj.numCoordinates; ++c)
+        js.coordinates.push_back(convertCoordinate(osim.coordinates[static_cast<std::size_t>(oj.firstCoordinate + c)]));
+    if (oj.type == OsimJointType::Custom) {
+        for (const OsimTransformAxis& axis : oj.spatialTransform) {
+            if (axis.coordinates.size() > 1)
+                throw ModelError(axis.function.where, "joint '" + oj.name + "': a transform axis driven by " +
+                                                          std::to_string(axis.coordinates.size()) +
+                                                          " coordinates (sinew takes at most one)");
+            TransformAxisSpec spec;
+            spec.axis = axis.axis;
+            if (!axis.coordinates.empty()) spec.coordinate = axis.coordinates.front();
+            spec.function = convertOsimFunction(axis.function);
+            js.transformAxes.push_back(spec);
+        }
+        return js;
+    }
+    const AxisTable table = getAxisTable(oj.type);
+    for (std::size_t k = 0; k < 6; ++k) {
+        TransformAxisSpec spec;
+        spec.axis = table.axes[k];
+        const int c = table.coordinate[k];
+        if (c >= 0) {
+            if (c >= oj.numCoordinates)
+                throw ModelError(oj.where, std::string(toString(oj.type)) + " '" + oj.name + "' has " +
+                                               std::to_string(oj.numCoordinates) + " coordinates, expected more");
+            spec.coordinate = js.coordinates[static_cast<std::size_t>(c)].name;
+            spec.function = Function::linear(1, 0);
+        } else {
+            spec.function = Function::constant(0);
+        }
+        js.transformAxes.push_back(spec);
+    }
+    return js;
+}
+
+WrapObjectSpec convertWrapObject(const OsimWrapObject& w, const std::string& link) {
+    WrapObjectSpec spec;
+    spec.name = w.name;
+    spec.link = link;
+    spec.xyzBodyRotation = w.xyzBodyRotation;
+    spec.translation = w.translation;
+    spec.where = w.where;
+    spec.quadrant = (w.quadrant.empty() || w.quadrant == "Unassigned") ? std::string("all") : w.quadrant;
+    switch (w.shape) {
+        case OsimWrapObject::Shape::Sphere: spec.shape = WrapShape::Sphere; spec.radius = w.radius; break;
+        case OsimWrapObject::Shape::Cylinder:
+            spec.shape = WrapShape::Cylinder;
+            spec.radius = w.radius;
+            spec.length = w.length;
+            break;
+        case OsimWrapObject::Shape::Ellipsoid: spec.shape = WrapShape::Ellipsoid; spec.radii = w.dimensions; break;
+        case OsimWrapObject::Shape::Torus: break;  // refused by the caller
+    }
+    return spec;
+}
+
+WirePointSpec convertPathPoint(const OsimModel& osim, const OsimPathPoint& point, const std::string& muscle) {
+    WirePointSpec spec;
+    spec.link = point.frame.body;
+    spec.where = point.where;
+    if (spec.link == osim.ground.name) spec.link = "ground";
+    if (point.type != OsimPathPoint::Type::Moving) {
+        spec.p_B = point.frame.p_BF + point.frame.R_BF * point.location;
+        if (point.type == OsimPathPoint::Type::Conditional)
+            spec.condition = WirePointConditionSpec{point.coordinate, point.rangeMin, point.rangeMax};
+        return spec;
+    }
+    // A moving component maps onto one axis of the link only on an unrotated frame at its origin.
+    if (!point.frame.R_BF.isIdentity(0) || !point.frame.p_BF.isZero(0))
+        throw ModelError(point.where, "muscle '" + muscle + "': moving path point '" + point.name +
+                                          "' on an offset frame (sinew moves points along their link's axes only)");
+    for (int axis = 0; axis < 3; ++axis) {
+        const Function f = convertOsimFunction(point.locationFunctions[static_cast<std::size_t>(axis)]);
+        const std::string& coordinate = point.locationCoordinates[static_cast<std::size_t>(axis)];
+        if (coordinate.empty())
+            spec.p_B[axis] = f.calcValue(0);
+        else
+            spec.motions.push_back(WirePointMotionSpec{axis, coordinate, f});
+    }
+    return spec;
+}
+
+WrapMethod convertWrapMethod(const OsimPathWrap& wrap) {
+    if (wrap.method == "midpoint") return WrapMethod::Midpoint;
+    if (wrap.method == "axial") return WrapMethod::Axial;
+    if (wrap.method == "hybrid" || wrap.method.empty()) return WrapMethod::Hybrid;
+    throw ModelError(wrap.where, "unknown wrap method '" + wrap.method + "' (expected hybrid, midpoint or axial)");
+}
+
+ForceLawSpec makeMuscleLaw(const OsimPathForce& muscle) {
+    ForceLawSpec law;
+    law.type = "thelen2003_muscle";
+    law.parameters.set("max_isometric_force", {muscle.maxIsometricForce});
+    law.parameters.set("optimal_fiber_length", {muscle.optimalFiberLength});
+    law.parameters.set("tendon_slack_length", {muscle.tendonSlackLength});
+    law.parameters.set("pennation_angle_at_optimal", {muscle.pennationAngleAtOptimal});
+    law.parameters.set("max_contraction_velocity", {muscle.maxContractionVelocity});
+    // Thelen2003Muscle's own curve parameters when the file gives them.
+    const std::array<std::pair<const char*, const char*>, 5> curve{{{"FmaxMuscleStrain", "fmax_muscle_strain"},
+                                                                    {"KshapeActive", "kshape_active"},
+                                                                    {"KshapePassive", "kshape_passive"},
+                                                                    {"Af", "af"},
+                                                                    {"Flen", "flen"}}};
+    for (const auto& [osimName, sinewName] : curve) {
+        const auto it = muscle.properties.find(osimName);
+        if (it == muscle.properties.end()) continue;
+        try {
+            law.parameters.set(sinewName, {std::stod(it->second)});
+        } catch (const std::exception&) {
+            throw ModelError(muscle.where, "muscle '" + muscle.name + "': " + osimName + " '" + it->second +
+                                               "' is not a number");
+        }
+    }
+    return law;
+}
+
+void addMuscle(const OsimModel& osim, const OsimPathForce& muscle, ModelBuilder& builder) {
+    WireSpec wire;
+    wire.name = muscle.name;
+    wire.kind = WireKind::Muscle;
+    wire.where = muscle.where;
+    for (const OsimPathPoint& point : muscle.path.points) wire.points.push_back(convertPathPoint(osim, point, muscle.name));
+    for (const OsimPathWrap& wrap : muscle.path.wraps) {
+        WireWrapSpec spec;
+        spec.object = wrap.wrapObject;
+        if (wrap.rangeBegin > 0) spec.firstPoint = wrap.rangeBegin - 1;
+        if (wrap.rangeEnd > 0) spec.lastPoint = wrap.rangeEnd - 1;
+        spec.method = convertWrapMethod(wrap);
+        spec.where = wrap.where;
+        wire.wraps.push_back(spec);
+    }
+    wire.law = makeMuscleLaw(muscle);
+    builder.addWire(std::move(wire));
+}
+
+}  // namespace
+
+Function convertOsimFunction(const OsimFunction& f) {
+    try {
+        switch (f.type) {
+            case OsimFunctionType::Constant: return Function::constant(f.value);
+            case OsimFunctionType::Linear: return Function::linear(f.coefficients.at(0), f.coefficients.at(1));
+            case OsimFunctionType::SimmSpline: return Function::simmSpline(f.x, f.y);
+            case OsimFunctionType::NaturalCubicSpline: return Function::naturalCubicSpline(f.x, f.y);
+            case OsimFunctionType::Polynomial: return Function::polynomial(f.coefficients);
+            case OsimFunctionType::Multiplier: return convertOsimFunction(f.inner.at(0)).multipliedBy(f.scale);
+            case OsimFunctionType::PiecewiseLinear: break;
+        }
+    } catch (const ModelError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw ModelError(f.where, std::string(toString(f.type)) + ": " + e.what());
+    }
+    throw ModelError(f.where, std::string(toString(f.type)) + " is not supported by sinew's model (expected "
+                                  "Constant, LinearFunction, SimmSpline, NaturalCubicSpline, PolynomialFunction or "
+                                  "MultiplierFunction)");
+}
+
+OsimConversion convertOsimModel(const OsimModel& osim) {
+    ModelBuilder builder(osim.name);
+    std::vector<std::string> notImported;
+    builder.setGravity(osim.gravity, osim.file);
+    for (const OsimBody& body : osim.bodies) builder.addLink(convertBody(body));
+    for (const OsimJoint& joint : osim.joints) builder.addJoint(convertJoint(osim, joint));
+
+    auto addWrapObjects = [&](const OsimBody& body) {
+        for (const OsimWrapObject& w : body.wrapObjects) {
+            if (w.shape == OsimWrapObject::Shape::Torus)
+                notImported.push_back(describe("WrapTorus", w.name, w.where) + ": torus wrapping is not supported");
+            else if (!w.active)
+                notImported.push_back(describe("wrap object", w.name, w.where) + ": inactive");
+            else
+                builder.addWrapObject(convertWrapObject(w, linkName(osim, body.name)));
+        }
+    };
+    addWrapObjects(osim.ground);
+    for (const OsimBody& body : osim.bodies) addWrapObjects(body);
+
+    for (const OsimPathForce& force : osim.pathForces) {
+        if (force.kind != OsimPathForce::Kind::Muscle)
+            notImported.push_back(describe(force.type, force.name, force.where) +
+                                  ": only muscles become wires so far");
+        else if (!force.limits.appliesForce)
+            notImported.push_back(describe(force.type, force.name, force.where) + ": disabled in the model");
+        else
+            addMuscle(osim, force, builder);
+    }
+    for (const OsimCoordinateCoupler& coupler : osim.couplers)
+        notImported.push_back(describe("CoordinateCouplerConstraint", coupler.name, coupler.where) +
+                              ": coupled coordinates are not modelled yet (the dependent one is left free)");
+    for (const OsimCoordinateActuator& a : osim.coordinateActuators)
+        notImported.push_back(describe("CoordinateActuator", a.name, a.where) + ": actuators are not wires");
+    for (const OsimPointActuator& a : osim.pointActuators)
+        notImported.push_back(describe("PointActuator", a.name, a.where) + ": actuators are not wires");
+    for (const OsimTorqueActuator& a : osim.torqueActuators)
+        notImported.push_back(describe("TorqueActuator", a.name, a.where) + ": actuators are not wires");
+    for (const OsimUnsupported& u : osim.unsupported)
+        notImported.push_back(describe(u.type, u.name, u.where) + ": not read from the .osim file");
+    return {builder.build(), std::move(notImported)};
+}
+
+}  // namespace sinew

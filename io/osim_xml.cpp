@@ -1,0 +1,321 @@
+#include "osim_xml.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "sinew/core/error.hpp"
+
+namespace sinew {
+
+const char* toString(OsimFunctionType type) {
+    switch (type) {
+        case OsimFunctionType::Constant: return "Constant";
+        case OsimFunctionType::Linear: return "LinearFunction";
+        case OsimFunctionType::SimmSpline: return "SimmSpline";
+        case OsimFunctionType::NaturalCubicSpline: return "NaturalCubicSpline";
+        case OsimFunctionType::PiecewiseLinear: return "PiecewiseLinearFunction";
+        case OsimFunctionType::Polynomial: return "PolynomialFunction";
+        case OsimFunctionType::Multiplier: return "MultiplierFunction";
+    }
+    return "?";
+}
+
+namespace osim {
+namespace {
+
+const std::map<std::string, OsimFunctionType>& functionTypes() {
+    static const std::map<std::string, OsimFunctionType> types = {
+        {"Constant", OsimFunctionType::Constant},
+        {"LinearFunction", OsimFunctionType::Linear},
+        {"SimmSpline", OsimFunctionType::SimmSpline},
+        {"NaturalCubicSpline", OsimFunctionType::NaturalCubicSpline},
+        {"PiecewiseLinearFunction", OsimFunctionType::PiecewiseLinear},
+        {"PolynomialFunction", OsimFunctionType::Polynomial},
+        {"MultiplierFunction", OsimFunctionType::Multiplier}};
+    return types;
+}
+
+std::string textOf(const Element& element) { return element.GetText() ? trim(element.GetText()) : std::string(); }
+
+// Knots of a spline or piecewise-linear function: x and y of one size >= 2, x strictly increasing.
+void readKnots(const XmlDocument& doc, const Element& element, OsimFunction& function) {
+    const Element* x = findChild(element, "x");
+    const Element* y = findChild(element, "y");
+    if (!x || !y) doc.fail(element, "needs both <x> and <y> knots");
+    function.x = readNumbers(doc, *x);
+    function.y = readNumbers(doc, *y);
+    if (function.x.size() != function.y.size() || function.x.size() < 2)
+        doc.fail(element, std::to_string(function.x.size()) + " x and " + std::to_string(function.y.size()) +
+                              " y knots; expected the same number, at least 2");
+    for (std::size_t i = 1; i < function.x.size(); ++i)
+        if (!(function.x[i] > function.x[i - 1]))
+            doc.fail(*x, "knots must increase strictly; x[" + std::to_string(i) + "] = " + std::to_string(function.x[i]) +
+                             " follows " + std::to_string(function.x[i - 1]));
+}
+
+}  // namespace
+
+XmlDocument::XmlDocument(std::string path) : path_(std::move(path)) {
+    const tinyxml2::XMLError status = document_.LoadFile(path_.c_str());
+    if (status == tinyxml2::XML_ERROR_FILE_NOT_FOUND || status == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED ||
+        status == tinyxml2::XML_ERROR_FILE_READ_ERROR)
+        throw ModelError(path_, "cannot open for reading");
+    if (status != tinyxml2::XML_SUCCESS)
+        throw ModelError(path_ + ":" + std::to_string(document_.ErrorLineNum()),
+                         std::string("malformed XML (") + document_.ErrorStr() + ")");
+    const Element* root = document_.RootElement();
+    if (!root) throw ModelError(path_, "no XML element in the file");
+    if (std::string(root->Name()) != "OpenSimDocument")
+        throw ModelError(where(*root), "the root element is <" + std::string(root->Name()) +
+                                           ">; an OpenSim file has <OpenSimDocument>");
+    version_ = root->IntAttribute("Version", 0);
+}
+
+const Element& XmlDocument::getObject(const char* type) const {
+    const Element* root = document_.RootElement();
+    const Element* object = root->FirstChildElement(type);
+    if (!object) fail(*root, std::string("holds no <") + type + ">");
+    return *object;
+}
+
+std::string XmlDocument::where(const Element& element) const {
+    return path_ + ":" + std::to_string(element.GetLineNum());
+}
+
+void XmlDocument::fail(const Element& element, const std::string& message) const {
+    throw ModelError(where(element), describe(element) + ": " + message);
+}
+
+std::string XmlDocument::resolveFile(const std::string& name) const {
+    if (name.empty()) return name;
+    const std::filesystem::path file(name);
+    if (file.is_absolute()) return file.lexically_normal().string();
+    return (std::filesystem::path(path_).parent_path() / file).lexically_normal().string();
+}
+
+std::string describe(const Element& element) {
+    const std::string name = getName(element);
+    return "<" + std::string(element.Name()) + (name.empty() ? "" : " name='" + name + "'") + ">";
+}
+
+std::string getName(const Element& element) {
+    const char* name = element.Attribute("name");
+    return name ? name : "";
+}
+
+std::string trim(const std::string& text) {
+    const char* const blanks = " \t\r\n";
+    const std::size_t begin = text.find_first_not_of(blanks);
+    if (begin == std::string::npos) return "";
+    return text.substr(begin, text.find_last_not_of(blanks) - begin + 1);
+}
+
+const Element* findChild(const Element& owner, const char* property) { return owner.FirstChildElement(property); }
+
+std::string readText(const XmlDocument&, const Element& owner, const char* property, const std::string& fallback) {
+    const Element* element = findChild(owner, property);
+    return element ? textOf(*element) : fallback;
+}
+
+std::vector<double> readNumbers(const XmlDocument& doc, const Element& element) {
+    // SimTK writes vectors as "~[1,2,3]" and some files wrap them in parentheses; both read as plain lists.
+    std::string text = textOf(element);
+    std::replace_if(text.begin(), text.end(), [](char c) { return std::string(",()[]~").find(c) != std::string::npos; },
+                    ' ');
+    std::istringstream tokens(text);
+    std::vector<double> numbers;
+    std::string token;
+    while (tokens >> token) {
+        char* end = nullptr;
+        const double value = std::strtod(token.c_str(), &end);
+        if (end != token.c_str() + token.size()) doc.fail(element, "'" + token + "' is not a number");
+        if (std::isnan(value)) doc.fail(element, "NaN is not a value");
+        numbers.push_back(value);
+    }
+    return numbers;
+}
+
+double readDouble(const XmlDocument& doc, const Element& owner, const char* property, double fallback) {
+    const Element* element = findChild(owner, property);
+    return element ? readFixedNumbers(doc, owner, property, 1, {})[0] : fallback;
+}
+
+double readRequiredDouble(const XmlDocument& doc, const Element& owner, const char* property) {
+    if (!findChild(owner, property)) doc.fail(owner, std::string("missing <") + property + ">");
+    return readDouble(doc, owner, property, 0);
+}
+
+Eigen::Vector3d readVector3(const XmlDocument& doc, const Element& owner, const char* property,
+                            const Eigen::Vector3d& fallback) {
+    const std::vector<double> numbers = readFixedNumbers(doc, owner, property, 3, {fallback.x(), fallback.y(), fallback.z()});
+    return Eigen::Vector3d(numbers[0], numbers[1], numbers[2]);
+}
+
+std::vector<double> readFixedNumbers(const XmlDocument& doc, const Element& owner, const char* property,
+                                     std::size_t count, std::vector<double> fallback) {
+    const Element* element = findChild(owner, property);
+    if (!element) return fallback;
+    std::vector<double> numbers = readNumbers(doc, *element);
+    if (numbers.size() != count)
+        doc.fail(*element, "expected " + std::to_string(count) + (count == 1 ? " number" : " numbers") + ", got '" +
+                               textOf(*element) + "'");
+    return numbers;
+}
+
+bool readBool(const XmlDocument& doc, const Element& owner, const char* property, bool fallback) {
+    const Element* element = findChild(owner, property);
+    if (!element) return fallback;
+    std::string text = textOf(*element);
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (text == "true") return true;
+    if (text == "false") return false;
+    doc.fail(*element, "expected true or false, got '" + textOf(*element) + "'");
+}
+
+std::vector<std::string> readNames(const XmlDocument& doc, const Element& owner, const char* property) {
+    std::istringstream tokens(readText(doc, owner, property));
+    std::vector<std::string> names;
+    std::string name;
+    while (tokens >> name) names.push_back(name);
+    return names;
+}
+
+std::vector<const Element*> getSetObjects(const Element& owner) {
+    std::vector<const Element*> objects;
+    const Element* list = findChild(owner, "objects");
+    if (!list) return objects;
+    for (const Element* child = list->FirstChildElement(); child; child = child->NextSiblingElement())
+        objects.push_back(child);
+    return objects;
+}
+
+std::string getCurrentTypeName(const std::string& type) {
+    static const std::map<std::string, std::string> renamed = {{"GeneralizedForce", "CoordinateActuator"},
+                                                               {"Force", "PointActuator"},
+                                                               {"Torque", "TorqueActuator"},
+                                                               {"Schutte1993Muscle", "Schutte1993Muscle_Deprecated"},
+                                                               {"Delp1990Muscle", "Delp1990Muscle_Deprecated"}};
+    const auto found = renamed.find(type);
+    return found == renamed.end() ? type : found->second;
+}
+
+bool isFunctionType(const std::string& type) { return functionTypes().count(type) > 0; }
+
+OsimFunction readFunction(const XmlDocument& doc, const Element& element) {
+    const auto type = functionTypes().find(element.Name());
+    if (type == functionTypes().end()) {
+        std::string known;
+        for (const auto& entry : functionTypes()) known += (known.empty() ? "" : ", ") + entry.first;
+        doc.fail(element, "unknown function type (sinew reads " + known + ")");
+    }
+    OsimFunction function;
+    function.type = type->second;
+    function.where = doc.where(element);
+    switch (function.type) {
+        case OsimFunctionType::Constant:
+            function.value = readDouble(doc, element, "value", 0);
+            break;
+        case OsimFunctionType::Linear:
+            function.coefficients = readFixedNumbers(doc, element, "coefficients", 2, {1, 0});
+            break;
+        case OsimFunctionType::Polynomial:
+            function.coefficients = findChild(element, "coefficients")
+                                        ? readNumbers(doc, *findChild(element, "coefficients"))
+                                        : std::vector<double>{1};
+            if (function.coefficients.empty()) doc.fail(element, "a polynomial needs at least one coefficient");
+            break;
+        case OsimFunctionType::SimmSpline:
+        case OsimFunctionType::NaturalCubicSpline:
+        case OsimFunctionType::PiecewiseLinear:
+            readKnots(doc, element, function);
+            break;
+        case OsimFunctionType::Multiplier: {
+            const Element* inner = findFunction(doc, element, "function");
+            if (!inner) doc.fail(element, "needs the <function> it scales");
+            function.inner.push_back(readFunction(doc, *inner));
+            function.scale = readDouble(doc, element, "scale", 1);
+            break;
+        }
+    }
+    return function;
+}
+
+const Element* findFunction(const XmlDocument& doc, const Element& owner, const char* property) {
+    if (const Element* wrapper = findChild(owner, property)) {
+        const Element* function = wrapper->FirstChildElement();
+        if (function && function->NextSiblingElement())
+            doc.fail(*wrapper, "holds more than one element; expected one function");
+        return function;
+    }
+    for (const Element* child = owner.FirstChildElement(); child; child = child->NextSiblingElement())
+        if (getName(*child) == property) return child;
+    return nullptr;
+}
+
+OsimActuatorLimits readActuatorLimits(const XmlDocument& doc, const Element& actuator, OsimActuatorLimits defaults) {
+    OsimActuatorLimits limits;
+    limits.optimalForce = readDouble(doc, actuator, "optimal_force", defaults.optimalForce);
+    limits.minControl = readDouble(doc, actuator, "min_control", defaults.minControl);
+    limits.maxControl = readDouble(doc, actuator, "max_control", defaults.maxControl);
+    if (limits.minControl > limits.maxControl)
+        doc.fail(actuator, "min_control " + std::to_string(limits.minControl) + " exceeds max_control " +
+                               std::to_string(limits.maxControl));
+    limits.appliesForce = readAppliesForce(doc, actuator, defaults.appliesForce);
+    return limits;
+}
+
+bool readAppliesForce(const XmlDocument& doc, const Element& force, bool fallback) {
+    return findChild(force, "appliesForce") ? readBool(doc, force, "appliesForce", fallback)
+                                            : !readBool(doc, force, "isDisabled", !fallback);
+}
+
+namespace {
+
+std::string readRequiredName(const XmlDocument& doc, const Element& owner, const char* property) {
+    const std::string text = readText(doc, owner, property);
+    if (text.empty()) doc.fail(owner, std::string("missing <") + property + ">");
+    return text;
+}
+
+}  // namespace
+
+OsimCoordinateActuator readCoordinateActuator(const XmlDocument& doc, const Element& element) {
+    OsimCoordinateActuator actuator;
+    actuator.name = getName(element);
+    actuator.coordinate = readRequiredName(doc, element, "coordinate");
+    actuator.limits = readActuatorLimits(doc, element, {});
+    actuator.where = doc.where(element);
+    return actuator;
+}
+
+OsimPointActuator readPointActuator(const XmlDocument& doc, const Element& element) {
+    OsimPointActuator actuator;
+    actuator.name = getName(element);
+    actuator.body = readRequiredName(doc, element, "body");
+    actuator.point = readVector3(doc, element, "point", actuator.point);
+    actuator.pointIsGlobal = readBool(doc, element, "point_is_global", actuator.pointIsGlobal);
+    actuator.direction = readVector3(doc, element, "direction", actuator.direction);
+    actuator.forceIsGlobal = readBool(doc, element, "force_is_global", actuator.forceIsGlobal);
+    actuator.limits = readActuatorLimits(doc, element, {});
+    actuator.where = doc.where(element);
+    return actuator;
+}
+
+OsimTorqueActuator readTorqueActuator(const XmlDocument& doc, const Element& element) {
+    OsimTorqueActuator actuator;
+    actuator.name = getName(element);
+    actuator.bodyA = readRequiredName(doc, element, "bodyA");
+    actuator.bodyB = readRequiredName(doc, element, "bodyB");
+    actuator.axis = readVector3(doc, element, "axis", actuator.axis);
+    actuator.torqueIsGlobal = readBool(doc, element, "torque_is_global", actuator.torqueIsGlobal);
+    actuator.limits = readActuatorLimits(doc, element, {});
+    actuator.where = doc.where(element);
+    return actuator;
+}
+
+}  // namespace osim
+}  // namespace sinew

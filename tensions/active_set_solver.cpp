@@ -1,0 +1,265 @@
+#include "sinew/tensions/active_set_solver.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
+namespace sinew {
+namespace {
+
+using SparseColumn = Eigen::SparseMatrix<double>::InnerIterator;
+
+// L L^T + sign w w^T for a lower Cholesky factor L, in place, O(n^2) (Golub and Van Loan, Matrix
+// Computations, 4th ed., section 6.5.4). `w` is overwritten. False when a downdate would leave the matrix
+// (numerically) indefinite; L is then garbage and must be refactorised.
+bool updateCholesky(Eigen::MatrixXd& L, Eigen::VectorXd& w, double sign) {
+    const Eigen::Index n = L.rows();
+    for (Eigen::Index k = 0; k < n; ++k) {
+        const double Lkk = L(k, k);
+        const double r2 = Lkk * Lkk + sign * w[k] * w[k];
+        if (!(r2 > 1e-10 * Lkk * Lkk)) return false;
+        const double r = std::sqrt(r2);
+        const double c = r / Lkk, s = w[k] / Lkk;
+        L(k, k) = r;
+        const Eigen::Index tail = n - k - 1;
+        if (tail == 0) break;
+        L.col(k).tail(tail) = (L.col(k).tail(tail) + sign * s * w.tail(tail)) / c;
+        w.tail(tail) = c * w.tail(tail) - s * L.col(k).tail(tail);
+    }
+    return true;
+}
+
+}  // namespace
+
+ActiveSetSolver::ActiveSetSolver(ActiveSetOptions options) : options_(options) {}
+
+// Sizes the buffers, reduces by the free columns, and sets the warm start: the previous multipliers moved
+// into this frame's null(G^T).
+void ActiveSetSolver::setUpFrame(const DistributionProblem& problem) {
+    validateDistributionProblem(problem);
+    const int rows = problem.getNumRows(), numBounded = problem.getNumBounded();
+    rank_ = 0;
+    if (problem.numFree > 0) {
+        G_ = problem.A.rightCols(problem.numFree);
+        qr_.setThreshold(1e-10);
+        qr_.compute(G_);
+        rank_ = static_cast<int>(qr_.rank());
+    }
+    // Equality rows: regulariser relative to the mean column term a_j^T a_j / weight_j.
+    double columnTerm = 0;
+    int columns = 0;
+    for (int j = 0; j < numBounded; ++j) {
+        const double norm2 = problem.A.col(j).squaredNorm();
+        if (norm2 > 0) columnTerm += norm2 / problem.weight[j], ++columns;
+    }
+    const double equalitySigma = options_.equalityRegularization * (columns ? columnTerm / columns : 1.0);
+    sigma_.resize(rows);
+    for (int i = 0; i < rows; ++i) sigma_[i] = problem.isEquality[static_cast<std::size_t>(i)] ? equalitySigma : 1.0;
+
+    const int reduced = rows - rank_;
+    v_.resize(numBounded);
+    x_.resize(numBounded);
+    slopeOfX_.resize(numBounded);
+    regime_.resize(static_cast<std::size_t>(numBounded));
+    factored_.resize(static_cast<std::size_t>(numBounded));
+    gradient_.resize(rows);
+    direction_.resize(rows);
+    rowWork_.resize(rows);
+    reducedGradient_.resize(reduced);
+    reducedDirection_.resize(reduced);
+    reducedWork_.resize(reduced);
+    events_.reserve(2 * static_cast<std::size_t>(numBounded));
+    if (!hasWarmStart_ || y_.size() != rows || !y_.allFinite()) {
+        y_.setZero(rows);
+    } else if (rank_ > 0) {
+        toReduced(y_, reducedWork_);
+        fromReduced(reducedWork_, y_);
+    }
+}
+
+void ActiveSetSolver::toReduced(const Eigen::VectorXd& rowVector, Eigen::VectorXd& reduced) {
+    if (rank_ == 0) {
+        reduced = rowVector;
+        return;
+    }
+    rowWork_ = rowVector;
+    rowWork_.applyOnTheLeft(qr_.householderQ().adjoint());
+    reduced = rowWork_.tail(reduced.size());
+}
+
+void ActiveSetSolver::fromReduced(const Eigen::VectorXd& reduced, Eigen::VectorXd& rowVector) {
+    if (rank_ == 0) {
+        rowVector = reduced;
+        return;
+    }
+    rowVector.head(rank_).setZero();
+    rowVector.tail(reduced.size()) = reduced;
+    rowVector.applyOnTheLeft(qr_.householderQ());
+}
+
+// x(y) = clamp(a_j^T y / weight_j) and the dual gradient tau - Sigma y - A_bounded x (docs/tensions.md, eq. QP-2).
+void ActiveSetSolver::evaluate(const DistributionProblem& problem) {
+    gradient_ = problem.target - sigma_.cwiseProduct(y_);
+    for (int j = 0; j < problem.getNumBounded(); ++j) {
+        double aty = 0;
+        for (SparseColumn it(problem.A, j); it; ++it) aty += it.value() * y_[it.row()];
+        v_[j] = aty / problem.weight[j];
+        const double lower = problem.lower[j], upper = problem.upper[j];
+        regime_[static_cast<std::size_t>(j)] = v_[j] <= lower ? AtLower : v_[j] >= upper ? AtUpper : Free;
+        x_[j] = std::min(std::max(v_[j], lower), upper);
+        for (SparseColumn it(problem.A, j); it; ++it) gradient_[it.row()] -= it.value() * x_[j];
+    }
+}
+
+// The Newton matrix Z^T (Sigma + sum over free j of a_j a_j^T / weight_j) Z from scratch, and its Cholesky factor.
+bool ActiveSetSolver::factorize(const DistributionProblem& problem) {
+    const int rows = problem.getNumRows();
+    K_.setZero(rows, rows);
+    K_.diagonal() = sigma_;
+    for (int j = 0; j < problem.getNumBounded(); ++j) {
+        if (regime_[static_cast<std::size_t>(j)] != Free) continue;
+        for (SparseColumn p(problem.A, j); p; ++p)
+            for (SparseColumn q(problem.A, j); q; ++q) K_(p.row(), q.row()) += p.value() * q.value() / problem.weight[j];
+    }
+    if (rank_ > 0) {
+        K_.applyOnTheLeft(qr_.householderQ().adjoint());
+        K_.applyOnTheRight(qr_.householderQ());
+    }
+    const Eigen::Index reduced = rows - rank_;
+    L_ = K_.bottomRightCorner(reduced, reduced);
+    const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(L_);
+    factored_ = regime_;
+    return llt.info() == Eigen::Success;
+}
+
+// Rank-one up/down-dates for the variables that entered or left the free set since the factorisation;
+// false when there are too many (a new factorisation is cheaper) or a downdate fails.
+bool ActiveSetSolver::updateFactor(const DistributionProblem& problem) {
+    const int numBounded = problem.getNumBounded();
+    int changes = 0;
+    for (std::size_t j = 0; j < regime_.size(); ++j)
+        if ((regime_[j] == Free) != (factored_[j] == Free)) ++changes;
+    if (changes > std::max<Eigen::Index>(4, L_.rows() / 8)) return false;
+    for (int j = 0; j < numBounded; ++j) {
+        const std::size_t jj = static_cast<std::size_t>(j);
+        if ((regime_[jj] == Free) == (factored_[jj] == Free)) continue;
+        direction_.setZero();
+        for (SparseColumn it(problem.A, j); it; ++it) direction_[it.row()] = it.value() / std::sqrt(problem.weight[j]);
+        toReduced(direction_, reducedWork_);
+        if (!updateCholesky(L_, reducedWork_, regime_[jj] == Free ? 1.0 : -1.0)) return false;
+        factored_[jj] = regime_[jj];
+    }
+    return true;
+}
+
+// Exact line search along direction_ on the dual, a concave piecewise quadratic: its slope is piecewise
+// linear in t and changes where a variable meets a bound, so walk those breakpoints in order until the
+// slope reaches zero.
+double ActiveSetSolver::searchLine(const DistributionProblem& problem) {
+    double slopeAt = gradient_.dot(direction_);  // > 0: Newton directions ascend
+    const double sigmaTerm = direction_.dot(sigma_.cwiseProduct(direction_));
+    double curvature = -sigmaTerm;
+    events_.clear();
+    for (int j = 0; j < problem.getNumBounded(); ++j) {
+        double s = 0;
+        for (SparseColumn it(problem.A, j); it; ++it) s += it.value() * direction_[it.row()];
+        if (s == 0) continue;
+        const double weight = problem.weight[j], rate = s / weight, c = s * s / weight;
+        const double lower = problem.lower[j], upper = problem.upper[j], v = v_[j];
+        const Regime regime = regime_[static_cast<std::size_t>(j)];
+        if (regime == Free) {
+            curvature -= c;
+            const double bound = rate > 0 ? upper : lower;
+            if (std::isfinite(bound)) events_.push_back({(bound - v) / rate, c});
+        } else if (lower < upper && ((regime == AtLower && rate > 0) || (regime == AtUpper && rate < 0))) {
+            const double enter = regime == AtLower ? lower : upper, leave = regime == AtLower ? upper : lower;
+            events_.push_back({(enter - v) / rate, -c});
+            if (std::isfinite(leave)) events_.push_back({(leave - v) / rate, c});
+        }
+    }
+    const auto later = [](const Event& a, const Event& b) { return a.t > b.t; };
+    std::make_heap(events_.begin(), events_.end(), later);
+    double t = 0;
+    while (!events_.empty()) {
+        const Event next = events_.front();
+        const double slopeAtNext = slopeAt + curvature * (next.t - t);
+        if (slopeAtNext <= 0) break;
+        slopeAt = slopeAtNext;
+        t = next.t;
+        // Rounding in the running sum must not make the dual look convex: Sigma keeps it strictly concave.
+        curvature = std::min(curvature + next.slopeChange, -sigmaTerm);
+        std::pop_heap(events_.begin(), events_.end(), later);
+        events_.pop_back();
+    }
+    return t - slopeAt / curvature;
+}
+
+void ActiveSetSolver::solve(const DistributionProblem& problem, DistributionResult& result) {
+    setUpFrame(problem);
+    const int numBounded = problem.getNumBounded();
+    const double tauScale = problem.target.size() ? problem.target.cwiseAbs().maxCoeff() : 0.0;
+    bool converged = false, factorValid = false;
+    int iterations = 0;
+    for (;;) {
+        evaluate(problem);
+        toReduced(gradient_, reducedGradient_);
+        // Size of the generalized forces: tau and A x (= tau - gradient - Sigma y).
+        rowWork_ = problem.target - gradient_ - sigma_.cwiseProduct(y_);
+        const double scale = std::max(tauScale, rowWork_.cwiseAbs().maxCoeff());
+        const double gradientNorm = reducedGradient_.size() ? reducedGradient_.cwiseAbs().maxCoeff() : 0.0;
+        if (!std::isfinite(gradientNorm)) break;
+        if (gradientNorm <= options_.tolerance * scale) {
+            converged = true;
+            break;
+        }
+        if (iterations >= options_.maxIterations) break;
+        if (!factorValid || !updateFactor(problem))
+            if (!factorize(problem)) break;
+        factorValid = true;
+        reducedDirection_ = reducedGradient_;
+        L_.triangularView<Eigen::Lower>().solveInPlace(reducedDirection_);
+        L_.triangularView<Eigen::Lower>().adjoint().solveInPlace(reducedDirection_);
+        fromReduced(reducedDirection_, direction_);
+        const double step = searchLine(problem);
+        if (!std::isfinite(step)) break;
+        y_ += step * direction_;
+        ++iterations;
+    }
+    if (!y_.allFinite()) {  // numerical breakdown: report the bounds-feasible point of y = 0, never NaN
+        y_.setZero();
+        evaluate(problem);
+        converged = false;
+    }
+
+    result.x.resize(problem.getNumVariables());
+    result.x.head(numBounded) = x_;
+    // Free variables: at the optimum the gradient lies in range(G), and G lambda takes it up.
+    if (problem.numFree > 0) result.x.tail(problem.numFree) = qr_.solve(gradient_);
+    result.multipliers = y_;
+    result.iterations = iterations;
+    calcResultSummary(problem, result);
+    result.objective = 0.5 * problem.weight.dot(x_.cwiseProduct(x_));
+    double equalityResidual = 0;
+    const double rowScale = std::max({1.0, tauScale, (problem.target - result.residual).cwiseAbs().maxCoeff()});
+    result.reserve.setZero(problem.getNumRows());
+    for (int i = 0; i < problem.getNumRows(); ++i) {
+        if (problem.isEquality[static_cast<std::size_t>(i)]) {
+            equalityResidual = std::max(equalityResidual, std::abs(result.residual[i]) / rowScale);
+        } else {
+            result.objective += 0.5 * result.residual[i] * result.residual[i];
+        }
+    }
+    if (!converged) {
+        result.status = DistributionStatus::Failed;
+    } else if (equalityResidual > options_.infeasibilityTolerance) {
+        result.status = DistributionStatus::Infeasible;
+        for (int i = 0; i < problem.getNumRows(); ++i)
+            if (problem.isEquality[static_cast<std::size_t>(i)]) result.reserve[i] = result.residual[i];
+    } else {
+        result.status = DistributionStatus::Optimal;
+    }
+    result.kkt = calcQpKktResiduals(problem, result.x, y_);
+    hasWarmStart_ = converged;
+}
+
+}  // namespace sinew

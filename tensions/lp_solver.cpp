@@ -1,0 +1,162 @@
+#include "sinew/tensions/lp_solver.hpp"
+
+#include <ClpSimplex.hpp>
+#include <CoinPackedMatrix.hpp>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace sinew {
+namespace {
+
+double toClp(double bound) { return std::max(-COIN_DBL_MAX, std::min(COIN_DBL_MAX, bound)); }
+
+// Row and column bounds and costs of the problem, in Clp's terms.
+struct LpArrays {
+    std::vector<double> rowLower, rowUpper, columnLower, columnUpper, cost;
+
+    void fill(const DistributionProblem& problem) {
+        const int rows = problem.getNumRows(), columns = problem.getNumVariables();
+        rowLower.resize(static_cast<std::size_t>(rows));
+        rowUpper.resize(static_cast<std::size_t>(rows));
+        for (int i = 0; i < rows; ++i) {
+            const std::size_t ii = static_cast<std::size_t>(i);
+            const double band = problem.isEquality[ii] ? 0 : problem.tolerance[i];
+            rowLower[ii] = problem.target[i] - band;
+            rowUpper[ii] = problem.target[i] + band;
+        }
+        columnLower.assign(static_cast<std::size_t>(columns), -COIN_DBL_MAX);
+        columnUpper.assign(static_cast<std::size_t>(columns), COIN_DBL_MAX);
+        cost.assign(static_cast<std::size_t>(columns), 0.0);
+        for (int j = 0; j < problem.getNumBounded(); ++j) {
+            const std::size_t jj = static_cast<std::size_t>(j);
+            columnLower[jj] = toClp(problem.lower[j]);
+            columnUpper[jj] = toClp(problem.upper[j]);
+            cost[jj] = problem.cost[j];
+        }
+    }
+};
+
+void clampToBounds(const DistributionProblem& problem, Eigen::VectorXd& x) {
+    for (int j = 0; j < problem.getNumBounded(); ++j) x[j] = std::min(std::max(x[j], problem.lower[j]), problem.upper[j]);
+}
+
+// The phase-1 LP: min sum(s+ + s-) over x within its bounds and s+, s- >= 0 with
+// tau - tolerance <= A x + s+ - s- <= tau + tolerance. Returns false when Clp fails; the reserve is s+ - s-.
+bool solvePhaseOne(const DistributionProblem& problem, const LpArrays& arrays, Eigen::VectorXd& x,
+                          Eigen::VectorXd& reserve, int& iterations) {
+    const int rows = problem.getNumRows(), columns = problem.getNumVariables();
+    const Eigen::SparseMatrix<double>& A = problem.A;
+    std::vector<int> starts(A.outerIndexPtr(), A.outerIndexPtr() + columns + 1);
+    std::vector<int> indices(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+    std::vector<double> values(A.valuePtr(), A.valuePtr() + A.nonZeros());
+    std::vector<double> columnLower = arrays.columnLower, columnUpper = arrays.columnUpper;
+    std::vector<double> cost(static_cast<std::size_t>(columns), 0.0);
+    for (const double sign : {1.0, -1.0}) {
+        for (int i = 0; i < rows; ++i) {
+            indices.push_back(i);
+            values.push_back(sign);
+            starts.push_back(static_cast<int>(indices.size()));
+            columnLower.push_back(0);
+            columnUpper.push_back(COIN_DBL_MAX);
+            cost.push_back(1);
+        }
+    }
+    ClpSimplex simplex;
+    simplex.setLogLevel(0);
+    simplex.loadProblem(columns + 2 * rows, rows, starts.data(), indices.data(), values.data(), columnLower.data(),
+                        columnUpper.data(), cost.data(), arrays.rowLower.data(), arrays.rowUpper.data());
+    simplex.dual();
+    if (simplex.status() != 0) simplex.primal();
+    iterations += simplex.numberIterations();
+    if (simplex.status() != 0) return false;
+    const double* solution = simplex.primalColumnSolution();
+    x = Eigen::Map<const Eigen::VectorXd>(solution, columns);
+    reserve = Eigen::Map<const Eigen::VectorXd>(solution + columns, rows) -
+              Eigen::Map<const Eigen::VectorXd>(solution + columns + rows, rows);
+    return true;
+}
+
+}  // namespace
+
+struct LpSolver::Backend {
+    ClpSimplex simplex;
+    bool loaded = false;
+    LpArrays arrays;
+    std::vector<unsigned char> basis;  // the previous frame's, while the problem is reloaded
+
+    Backend() { simplex.setLogLevel(0); }
+
+    // Loads A, bounds and costs, and gives the new problem the previous frame's basis (Clp's status arrays)
+    // when the sizes are unchanged, for the dual simplex to start from.
+    void load(const DistributionProblem& problem) {
+        arrays.fill(problem);
+        const Eigen::SparseMatrix<double>& A = problem.A;
+        const int rows = static_cast<int>(A.rows()), columns = static_cast<int>(A.cols());
+        const bool keepBasis = loaded && simplex.numberRows() == rows && simplex.numberColumns() == columns;
+        if (keepBasis) basis.assign(simplex.statusArray(), simplex.statusArray() + rows + columns);
+        simplex.loadProblem(columns, rows, A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(),
+                            arrays.columnLower.data(), arrays.columnUpper.data(), arrays.cost.data(),
+                            arrays.rowLower.data(), arrays.rowUpper.data());
+        if (keepBasis) simplex.copyinStatus(basis.data());
+        loaded = true;
+    }
+
+    // Dual simplex from the current basis; on trouble (iteration limit, numerical errors) once more from
+    // the slack basis, then the primal simplex. Clp's status: 0 optimal, 1 infeasible, others failed.
+    int run() {
+        simplex.dual();
+        if (simplex.status() <= 1) return simplex.status();
+        simplex.allSlackBasis(true);
+        simplex.dual();
+        if (simplex.status() <= 1) return simplex.status();
+        simplex.primal();
+        return simplex.status();
+    }
+};
+
+LpSolver::LpSolver() : backend_(std::make_unique<Backend>()) {}
+LpSolver::~LpSolver() = default;
+
+void LpSolver::reset() { backend_ = std::make_unique<Backend>(); }
+
+void LpSolver::solve(const DistributionProblem& problem, DistributionResult& result) {
+    validateDistributionProblem(problem);
+    const int rows = problem.getNumRows(), columns = problem.getNumVariables();
+    backend_->load(problem);
+    int status = backend_->run();
+    result.iterations = backend_->simplex.numberIterations();
+    result.reserve.setZero(rows);
+    result.multipliers.setZero(rows);
+    result.x.setZero(columns);
+    result.status = DistributionStatus::Failed;
+    if (status == 1) {
+        // Confirm with phase 1: a warm-started dual simplex may call a nearly infeasible frame infeasible.
+        Eigen::VectorXd reserve;
+        if (solvePhaseOne(problem, backend_->arrays, result.x, reserve, result.iterations)) {
+            const double scale = std::max(1.0, problem.target.cwiseAbs().maxCoeff());
+            if (reserve.cwiseAbs().maxCoeff() > 1e-6 * scale) {  // Clp's feasibility tolerance is 1e-7
+                result.status = DistributionStatus::Infeasible;
+                result.reserve = reserve;
+            } else {
+                backend_->simplex.allSlackBasis(true);
+                backend_->simplex.dual();
+                status = backend_->simplex.status();
+                result.iterations += backend_->simplex.numberIterations();
+            }
+        }
+    }
+    if (status == 0) {
+        result.status = DistributionStatus::Optimal;
+        result.x = Eigen::Map<const Eigen::VectorXd>(backend_->simplex.primalColumnSolution(), columns);
+        result.multipliers = Eigen::Map<const Eigen::VectorXd>(backend_->simplex.dualRowSolution(), rows);
+    }
+    if (!result.x.allFinite()) result.x.setZero();
+    if (!result.multipliers.allFinite()) result.multipliers.setZero();
+    clampToBounds(problem, result.x);
+    calcResultSummary(problem, result);
+    result.objective = problem.cost.dot(result.x.head(problem.getNumBounded()));
+    result.kkt = calcLpKktResiduals(problem, result.x, result.multipliers);
+}
+
+}  // namespace sinew

@@ -1,0 +1,102 @@
+#include "sinew/tensions/static_optimization.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "sinew/core/error.hpp"
+
+namespace sinew {
+
+StaticOptimization::StaticOptimization(StaticOptimizationSettings settings, ActiveSetOptions options)
+    : settings_(std::move(settings)), solver_(options) {
+    const Eigen::Index numWires = settings_.maxIsometricForce.size();
+    if (settings_.minActivation.size() == 0) settings_.minActivation.setZero(numWires);
+    if (settings_.maxActivation.size() == 0) settings_.maxActivation.setOnes(numWires);
+    if (settings_.activationExponent != 2)
+        throw Error("static optimization: activation exponent " + std::to_string(settings_.activationExponent) +
+                    " is not supported (the active-set solver minimises the sum of squared activations: use 2)");
+    if (settings_.minActivation.size() != numWires || settings_.maxActivation.size() != numWires)
+        throw Error("static optimization: " + std::to_string(settings_.minActivation.size()) + " minimum and " +
+                    std::to_string(settings_.maxActivation.size()) + " maximum activations for " +
+                    std::to_string(numWires) + " wires");
+    for (Eigen::Index w = 0; w < numWires; ++w) {
+        const std::string at = "wire " + std::to_string(w);
+        if (!(settings_.maxIsometricForce[w] > 0) || !std::isfinite(settings_.maxIsometricForce[w]))
+            throw Error("static optimization: " + at + " has max isometric force " +
+                        std::to_string(settings_.maxIsometricForce[w]) + ", expected a finite value > 0");
+        if (!(settings_.minActivation[w] <= settings_.maxActivation[w]))
+            throw Error("static optimization: " + at + " has activation bounds [" +
+                        std::to_string(settings_.minActivation[w]) + ", " + std::to_string(settings_.maxActivation[w]) +
+                        "], expected min <= max");
+    }
+    for (const ReserveActuator& reserve : settings_.reserves)
+        if (!(reserve.optimalForce > 0) || !std::isfinite(reserve.optimalForce) || !(reserve.minControl <= reserve.maxControl))
+            throw Error("static optimization: reserve '" + reserve.name + "' has optimal force " +
+                        std::to_string(reserve.optimalForce) + " and control bounds [" +
+                        std::to_string(reserve.minControl) + ", " + std::to_string(reserve.maxControl) +
+                        "], expected a finite optimal force > 0 and min <= max");
+}
+
+void StaticOptimization::solve(const DistributionProblem& wireProblem, const Eigen::VectorXd& forceMultiplier,
+                               StaticOptimizationResult& result) {
+    const int numWires = static_cast<int>(settings_.maxIsometricForce.size());
+    const int numReserves = static_cast<int>(settings_.reserves.size());
+    const int rows = wireProblem.getNumRows(), numFree = wireProblem.numFree;
+    if (wireProblem.getNumBounded() != numWires || forceMultiplier.size() != numWires)
+        throw Error("static optimization: the wire problem has " + std::to_string(wireProblem.getNumBounded()) +
+                    " wires and the frame " + std::to_string(forceMultiplier.size()) + " force multipliers, expected " +
+                    std::to_string(numWires));
+    for (const ReserveActuator& reserve : settings_.reserves)
+        if (reserve.dof < 0 || reserve.dof >= rows)
+            throw Error("static optimization: reserve '" + reserve.name + "' acts on DOF " + std::to_string(reserve.dof) +
+                        ", expected 0 to " + std::to_string(rows - 1));
+    for (int w = 0; w < numWires; ++w)
+        if (!(forceMultiplier[w] >= 0) || !std::isfinite(forceMultiplier[w]))
+            throw Error("static optimization: wire " + std::to_string(w) + " has force multiplier " +
+                        std::to_string(forceMultiplier[w]) + ", expected a finite value >= 0");
+
+    // Columns [wires scaled to activations; reserves; free], all rows exact, Σ x² as ½ Σ 2 x².
+    const int numBounded = numWires + numReserves;
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(static_cast<std::size_t>(wireProblem.A.nonZeros() + numReserves));
+    for (int w = 0; w < numWires; ++w) {
+        const double force = settings_.maxIsometricForce[w] * forceMultiplier[w];
+        for (Eigen::SparseMatrix<double>::InnerIterator it(wireProblem.A, w); it; ++it)
+            entries.emplace_back(it.row(), w, it.value() * force);
+    }
+    for (int r = 0; r < numReserves; ++r)
+        entries.emplace_back(settings_.reserves[static_cast<std::size_t>(r)].dof, numWires + r,
+                             settings_.reserves[static_cast<std::size_t>(r)].optimalForce);
+    for (int k = 0; k < numFree; ++k)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(wireProblem.A, numWires + k); it; ++it)
+            entries.emplace_back(it.row(), numBounded + k, it.value());
+    problem_.A.resize(rows, numBounded + numFree);
+    problem_.A.setFromTriplets(entries.begin(), entries.end());
+    problem_.A.makeCompressed();
+    problem_.numFree = numFree;
+    problem_.lower.resize(numBounded);
+    problem_.upper.resize(numBounded);
+    problem_.lower.head(numWires) = settings_.minActivation;
+    problem_.upper.head(numWires) = settings_.maxActivation;
+    for (int r = 0; r < numReserves; ++r) {
+        problem_.lower[numWires + r] = settings_.reserves[static_cast<std::size_t>(r)].minControl;
+        problem_.upper[numWires + r] = settings_.reserves[static_cast<std::size_t>(r)].maxControl;
+    }
+    problem_.cost.setZero(numBounded);
+    problem_.weight.setConstant(numBounded, 2.0);
+    problem_.target = wireProblem.target;
+    problem_.tolerance.setZero(rows);
+    problem_.isEquality.assign(static_cast<std::size_t>(rows), true);
+
+    solver_.solve(problem_, result.distribution);
+    const Eigen::VectorXd& x = result.distribution.x;
+    result.activation = x.head(numWires);
+    result.tension = result.activation.cwiseProduct(settings_.maxIsometricForce).cwiseProduct(forceMultiplier);
+    result.reserveControl = x.segment(numWires, numReserves);
+    result.reserveForce.resize(numReserves);
+    for (int r = 0; r < numReserves; ++r)
+        result.reserveForce[r] = result.reserveControl[r] * settings_.reserves[static_cast<std::size_t>(r)].optimalForce;
+    result.loopForce = x.tail(numFree);
+}
+
+}  // namespace sinew

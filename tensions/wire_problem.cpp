@@ -1,0 +1,136 @@
+#include "sinew/tensions/wire_problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "sinew/core/error.hpp"
+#include "sinew/core/kinematics.hpp"
+
+namespace sinew {
+namespace {
+
+// The DOF rows of `link`'s joint and of all its ancestors' joints: what a force on the link can reach.
+void addPathToRoot(const Model& model, int link, std::vector<bool>& rows) {
+    for (; link != kGround; link = model.getJoint(link).parent) {
+        const Joint& joint = model.getJoint(link);
+        for (int k = 0; k < joint.nu; ++k) rows[static_cast<std::size_t>(joint.uStart + k)] = true;
+    }
+}
+
+// Adds force_G applied at the point p_B of `link` to Data::F_G (moment about the link's origin); nothing on
+// ground.
+void addPointForce(Data& data, int link, const Eigen::Vector3d& p_B, const Eigen::Vector3d& force_G) {
+    if (link == kGround) return;
+    SpatialVector& F = data.F_G[static_cast<std::size_t>(link)];
+    F.head<3>() += (data.R_GB[static_cast<std::size_t>(link)] * p_B).cross(force_G);
+    F.tail<3>() += force_G;
+}
+
+// Zeroes the entries of column j that are roundoff (below 1e-12 of its largest). Internal forces give the
+// free root's rows exactly zero in exact arithmetic and ~1e-17 in floating point; left in, such rows would
+// look like DOFs needing enormous tensions, and an LP's row scaling would blow them up.
+void dropRoundoff(Eigen::SparseMatrix<double>& A, int j) {
+    double largest = 0;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) largest = std::max(largest, std::abs(it.value()));
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
+        if (std::abs(it.value()) <= 1e-12 * largest) it.valueRef() = 0;
+}
+
+}  // namespace
+
+WireProblemBuilder::WireProblemBuilder(const Model& model, Eigen::VectorXd maxTension, WireProblemOptions options)
+    : model_(model), maxTension_(std::move(maxTension)), options_(options) {
+    if (maxTension_.size() != model.getNumWires())
+        throw Error("wire problem: " + std::to_string(maxTension_.size()) + " maximum tensions for " +
+                    std::to_string(model.getNumWires()) + " wires");
+    for (int w = 0; w < model.getNumWires(); ++w)
+        if (!(maxTension_[w] > 0) || !std::isfinite(maxTension_[w]))
+            throw Error("wire problem: wire '" + model.getWire(w).name + "' has maximum tension " +
+                        std::to_string(maxTension_[w]) + " N, expected a finite value > 0");
+    const int nu = model.getNumU(), numWires = model.getNumWires();
+    std::vector<Eigen::Triplet<double>> entries;
+    std::vector<bool> rows;
+    const auto addColumn = [&](int column) {
+        for (int i = 0; i < nu; ++i)
+            if (rows[static_cast<std::size_t>(i)]) entries.emplace_back(i, column, 1.0);
+    };
+    for (int w = 0; w < numWires; ++w) {
+        rows.assign(static_cast<std::size_t>(nu), false);
+        for (const int link : model.getWire(w).supportLinks) {
+            const Joint& joint = model.getJoint(link);
+            for (int k = 0; k < joint.nu; ++k) rows[static_cast<std::size_t>(joint.uStart + k)] = true;
+        }
+        addColumn(w);
+    }
+    for (int l = 0; l < model.getNumLoops(); ++l) {
+        rows.assign(static_cast<std::size_t>(nu), false);
+        addPathToRoot(model, model.getLoop(l).linkA, rows);
+        addPathToRoot(model, model.getLoop(l).linkB, rows);
+        for (int c = 0; c < 3; ++c) addColumn(numWires + 3 * l + c);
+    }
+    pattern_.resize(nu, numWires + 3 * model.getNumLoops());
+    pattern_.setFromTriplets(entries.begin(), entries.end());
+    pattern_.makeCompressed();
+}
+
+DistributionProblem WireProblemBuilder::makeProblem() const {
+    const int nu = model_.getNumU(), numWires = model_.getNumWires();
+    DistributionProblem problem;
+    problem.A = pattern_;
+    problem.A.coeffs().setZero();
+    problem.numFree = 3 * model_.getNumLoops();
+    problem.lower.setZero(numWires);
+    problem.upper = maxTension_;
+    problem.cost.setConstant(numWires, options_.wireCost);
+    problem.weight.setOnes(numWires);
+    problem.target.setZero(nu);
+    problem.tolerance.setConstant(nu, options_.torqueTolerance);
+    problem.isEquality.assign(static_cast<std::size_t>(nu), false);
+    for (int link = 0; link < model_.getNumLinks(); ++link) {
+        if (!model_.getLink(link).isVirtual) continue;
+        const Joint& joint = model_.getJoint(link);
+        for (int k = 0; k < joint.nu; ++k) problem.isEquality[static_cast<std::size_t>(joint.uStart + k)] = true;
+    }
+    return problem;
+}
+
+void WireProblemBuilder::update(Data& data, const Eigen::MatrixXd& J, const Eigen::VectorXd& tau,
+                                DistributionProblem& problem) const {
+    const int nu = model_.getNumU(), numWires = model_.getNumWires();
+    if (J.rows() != numWires || J.cols() != nu)
+        throw Error("wire problem: J is " + std::to_string(J.rows()) + " x " + std::to_string(J.cols()) +
+                    ", expected numWires x nu = " + std::to_string(numWires) + " x " + std::to_string(nu));
+    if (tau.size() != nu)
+        throw Error("wire problem: tau has " + std::to_string(tau.size()) + " entries, expected nu = " + std::to_string(nu));
+    if (problem.A.nonZeros() != pattern_.nonZeros() || problem.A.cols() != pattern_.cols())
+        throw Error("wire problem: the problem was not made by this builder's makeProblem()");
+    double meanSquaredArm = 0;
+    for (int w = 0; w < numWires; ++w) {
+        for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, w); it; ++it) it.valueRef() = -J(w, it.row());
+        dropRoundoff(problem.A, w);
+        meanSquaredArm += problem.A.col(w).squaredNorm();
+    }
+    meanSquaredArm = numWires ? meanSquaredArm / numWires : 0;
+    problem.weight.setConstant(numWires, options_.regularization * (meanSquaredArm > 0 ? meanSquaredArm : 1.0));
+    // Loop columns: the generalized forces of a unit force e_c on link B at its loop point and -e_c on link A
+    // at its own, i.e. the transposed loop-constraint Jacobian.
+    Eigen::VectorXd column(nu);
+    for (int l = 0; l < model_.getNumLoops(); ++l) {
+        const Loop& loop = model_.getLoop(l);
+        for (int c = 0; c < 3; ++c) {
+            for (SpatialVector& F : data.F_G) F.setZero();
+            addPointForce(data, loop.linkB, loop.p_B, Eigen::Vector3d::Unit(c));
+            addPointForce(data, loop.linkA, loop.p_A, -Eigen::Vector3d::Unit(c));
+            calcGeneralizedForcesFromLinkForces(model_, data, column);
+            for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, numWires + 3 * l + c); it; ++it)
+                it.valueRef() = column[it.row()];
+            dropRoundoff(problem.A, numWires + 3 * l + c);
+        }
+    }
+    problem.target = tau;
+}
+
+}  // namespace sinew

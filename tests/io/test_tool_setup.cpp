@@ -1,0 +1,149 @@
+// Tool setups: the shipped inverse-dynamics and static-optimization setups read with the values their XML
+// holds and every file they name resolved to an existing file; a force-set file; bad setups refused at
+// their line.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "sinew/core/error.hpp"
+#include "sinew/io/tool_setup.hpp"
+#include "support/error_assertions.hpp"
+
+namespace sinew {
+namespace {
+
+const std::string kOpenSimDir = std::string(SINEW_SHARED_DIR) + "/data/opensim";
+
+TEST(ToolSetup, GaitInverseDynamics) {
+    const std::string path = kOpenSimDir + "/gait2354/subject01_Setup_InverseDynamics.xml";
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "OpenSim data not found at " << kOpenSimDir;
+    const InverseDynamicsSetup setup = readInverseDynamicsSetup(path);
+    EXPECT_EQ(setup.name, "subject01_walk1");
+    for (const std::string& file : {setup.modelFile, setup.externalLoadsFile, setup.coordinatesFile})
+        EXPECT_TRUE(std::filesystem::is_regular_file(file)) << file;
+    EXPECT_EQ(std::filesystem::path(setup.modelFile).filename(), "subject01_simbody.osim");
+    EXPECT_EQ(std::filesystem::path(setup.coordinatesFile).filename(), "subject01_walk1_ik.mot");
+    EXPECT_EQ(setup.startTime, 0.4);
+    EXPECT_EQ(setup.endTime, 1.6);
+    EXPECT_EQ(setup.forcesToExclude, std::vector<std::string>{"Muscles"});
+    EXPECT_EQ(setup.lowpassCutoffFrequencyForCoordinates, 6);
+    EXPECT_EQ(setup.outputGenForceFile, "inverse_dynamics.sto");
+    EXPECT_EQ(setup.resultsDirectory,
+              (std::filesystem::path(kOpenSimDir) / "gait2354" / "ResultsInverseDynamics").lexically_normal());
+    EXPECT_EQ(setup.inputDirectory, "");
+    EXPECT_FALSE(setup.coordinatesInDegrees);
+}
+
+TEST(ToolSetup, Arm26InverseDynamicsAndStaticOptimization) {
+    const std::string dir = kOpenSimDir + "/arm26";
+    if (!std::filesystem::exists(dir)) GTEST_SKIP() << "OpenSim data not found at " << kOpenSimDir;
+    const InverseDynamicsSetup id = readInverseDynamicsSetup(dir + "/arm26_Setup_InverseDynamics.xml");
+    EXPECT_TRUE(std::filesystem::is_regular_file(id.modelFile));
+    EXPECT_EQ(id.externalLoadsFile, "");
+    ASSERT_TRUE(id.coordinatesInDegrees);
+    EXPECT_TRUE(*id.coordinatesInDegrees);
+    EXPECT_EQ(id.endTime, 1);
+
+    const AnalyzeSetup so = readAnalyzeSetup(dir + "/arm26_Setup_StaticOptimization.xml");
+    EXPECT_EQ(so.name, "arm26");
+    EXPECT_TRUE(std::filesystem::is_regular_file(so.modelFile));
+    EXPECT_TRUE(std::filesystem::is_regular_file(so.coordinatesFile));
+    EXPECT_EQ(so.statesFile, "");
+    EXPECT_EQ(so.speedsFile, "");
+    EXPECT_FALSE(so.replaceForceSet);
+    EXPECT_TRUE(so.forceSetFiles.empty());
+    EXPECT_EQ(so.initialTime, 0);
+    EXPECT_EQ(so.finalTime, 1);
+    EXPECT_EQ(so.lowpassCutoffFrequencyForCoordinates, 6);
+    EXPECT_EQ(so.outputPrecision, 8);
+    EXPECT_TRUE(so.solveForEquilibriumForAuxiliaryStates);
+    ASSERT_TRUE(so.staticOptimization);
+    EXPECT_EQ(so.staticOptimization->activationExponent, 2);
+    EXPECT_TRUE(so.staticOptimization->useMusclePhysiology);
+    EXPECT_TRUE(so.staticOptimization->useModelForceSet);
+    EXPECT_EQ(so.staticOptimization->stepInterval, 1);
+    EXPECT_EQ(so.staticOptimization->endTime, 1);
+    EXPECT_EQ(so.staticOptimization->optimizerConvergenceCriterion, 1e-4);  // OpenSim's default, absent here
+    EXPECT_TRUE(so.unsupported.empty());
+}
+
+std::string writeSetup(const std::string& name, const std::string& text) {
+    const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "sinew_tool_setup";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / name) << text;
+    return (dir / name).string();
+}
+
+TEST(ToolSetup, ForceSetFileAndAnalyzeToolReferencingIt) {
+    const std::string forces = writeSetup("reserves.xml", R"(<OpenSimDocument Version="30000">
+<ForceSet name="reserves"><objects>
+  <CoordinateActuator name="r_elbow_reserve"><coordinate>r_elbow_flex</coordinate><optimal_force>1</optimal_force>
+    <min_control>-Infinity</min_control><max_control>Infinity</max_control></CoordinateActuator>
+  <PointActuator name="FX"><body>pelvis</body><point>0 0.1 0</point><direction>1 0 0</direction><force_is_global>true</force_is_global><optimal_force>2</optimal_force></PointActuator>
+  <TorqueActuator name="MZ"><bodyA>pelvis</bodyA><bodyB>ground</bodyB><axis>0 0 1</axis><optimal_force>3</optimal_force><max_control>5</max_control></TorqueActuator>
+  <SpringGeneralizedForce name="spring"/>
+</objects></ForceSet></OpenSimDocument>
+)");
+    const OsimForceSet set = readForceSetFile(forces);
+    ASSERT_EQ(set.coordinateActuators.size(), 1u);
+    EXPECT_EQ(set.coordinateActuators[0].coordinate, "r_elbow_flex");
+    EXPECT_EQ(set.coordinateActuators[0].limits.minControl, -INFINITY);
+    ASSERT_EQ(set.pointActuators.size(), 1u);
+    EXPECT_TRUE(set.pointActuators[0].forceIsGlobal);
+    EXPECT_FALSE(set.pointActuators[0].pointIsGlobal);
+    EXPECT_EQ(set.pointActuators[0].point, Eigen::Vector3d(0, 0.1, 0));
+    ASSERT_EQ(set.torqueActuators.size(), 1u);
+    EXPECT_EQ(set.torqueActuators[0].limits.optimalForce, 3);
+    EXPECT_EQ(set.torqueActuators[0].limits.maxControl, 5);
+    EXPECT_EQ(set.torqueActuators[0].limits.minControl, -INFINITY);
+    ASSERT_EQ(set.unsupported.size(), 1u);
+    EXPECT_EQ(set.unsupported[0].where, forces + ":7");
+
+    const std::string setup = writeSetup("analyze.xml", R"(<OpenSimDocument Version="30000">
+<AnalyzeTool name="run">
+  <model_file>models/arm.osim</model_file>
+  <force_set_files>reserves.xml other/residuals.xml</force_set_files>
+  <states_file>states.sto</states_file>
+  <AnalysisSet name="Analyses"><objects><Kinematics name="kin"/></objects></AnalysisSet>
+</AnalyzeTool></OpenSimDocument>
+)");
+    const AnalyzeSetup analyze = readAnalyzeSetup(setup);
+    const std::filesystem::path dir = std::filesystem::path(setup).parent_path();
+    EXPECT_EQ(analyze.forceSetFiles, (std::vector<std::string>{forces, (dir / "other" / "residuals.xml").string()}));
+    EXPECT_EQ(analyze.modelFile, (dir / "models" / "arm.osim").string());
+    EXPECT_TRUE(analyze.replaceForceSet);  // OpenSim's default
+    EXPECT_FALSE(analyze.staticOptimization);
+    ASSERT_EQ(analyze.unsupported.size(), 1u);
+    EXPECT_EQ(analyze.unsupported[0].type, "Kinematics");
+}
+
+TEST(ToolSetup, BadSetups) {
+    const std::string reversed = writeSetup("reversed.xml", R"(<OpenSimDocument Version="30000">
+<InverseDynamicsTool name="id">
+  <model_file>m.osim</model_file><coordinates_file>q.mot</coordinates_file>
+  <time_range>2 1</time_range>
+</InverseDynamicsTool></OpenSimDocument>
+)");
+    EXPECT_TRUE(test::throwsErrorAt([&] { readInverseDynamicsSetup(reversed); }, reversed + ":4: ",
+                                    {"<time_range>", "starts at 2", "after its end"}, ""));
+    EXPECT_TRUE(test::throwsErrorAt([&] { readAnalyzeSetup(reversed); }, reversed + ":1: ",
+                                    {"<OpenSimDocument>", "holds no <AnalyzeTool>"}, ""));
+    const std::string noMotion = writeSetup("no_motion.xml", R"(<OpenSimDocument Version="30000">
+<AnalyzeTool name="so"><model_file>m.osim</model_file><coordinates_file> </coordinates_file>
+  <AnalysisSet><objects><StaticOptimization name="so"><activation_exponent>0</activation_exponent></StaticOptimization></objects></AnalysisSet>
+</AnalyzeTool></OpenSimDocument>
+)");
+    EXPECT_TRUE(test::throwsErrorAt([&] { readAnalyzeSetup(noMotion); }, noMotion + ":2: ",
+                                    {"<AnalyzeTool name='so'>", "no motion"}, ""));
+    const std::string noModel = writeSetup("no_model.xml", R"(<OpenSimDocument Version="30000">
+<InverseDynamicsTool name="id"><coordinates_file>q.mot</coordinates_file></InverseDynamicsTool></OpenSimDocument>
+)");
+    EXPECT_TRUE(test::throwsErrorAt([&] { readInverseDynamicsSetup(noModel); }, noModel + ":2: ",
+                                    {"missing <model_file>"}, ""));
+}
+
+}  // namespace
+}  // namespace sinew

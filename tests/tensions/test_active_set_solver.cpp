@@ -1,0 +1,126 @@
+// The active-set QP against Ipopt on random problems with the degeneracies of real models, its warm start
+// against cold solves, its infeasibility report, and the KKT residuals it reports.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "support/ipopt_reference.hpp"
+#include "support/random_distribution_problems.hpp"
+#include "sinew/core/error.hpp"
+#include "sinew/tensions/active_set_solver.hpp"
+
+namespace sinew {
+namespace {
+
+using test::DistributionNlp;
+
+void expectWithinBounds(const DistributionProblem& p, const Eigen::VectorXd& x, const std::string& name) {
+    ASSERT_TRUE(x.allFinite()) << name;
+    for (int j = 0; j < p.getNumBounded(); ++j) {
+        EXPECT_GE(x[j], p.lower[j]) << name << " variable " << j;
+        EXPECT_LE(x[j], p.upper[j]) << name << " variable " << j;
+    }
+}
+
+TEST(ActiveSetSolver, MatchesIpoptOnRandomDegenerateProblems) {
+    // Tensions of the targets in [-0.5, 1.5] x maximum, plus noise: bounds active on both sides.
+    for (const test::RandomProblemOptions& o : test::makeProblemSweep(-0.5, 1.5, 0.1)) {
+        const DistributionProblem p = test::makeRandomProblem(o);
+        ActiveSetSolver solver;
+        DistributionResult result;
+        solver.solve(p, result);
+        const std::string name = test::describe(o);
+        ASSERT_EQ(result.status, DistributionStatus::Optimal) << name;
+        EXPECT_LE(result.kkt.getMax(), 1e-6) << name;
+        expectWithinBounds(p, result.x, name);
+        const test::IpoptReference reference = test::solveWithIpopt(p, DistributionNlp::Kind::Qp);
+        ASSERT_TRUE(reference.solved) << name;
+        EXPECT_NEAR(result.objective, reference.objective, 1e-6 * std::abs(reference.objective)) << name;
+        // The strictly convex QP has one answer.
+        EXPECT_LE((result.x.head(p.getNumBounded()) - reference.x.head(p.getNumBounded())).cwiseAbs().maxCoeff(),
+                  1e-4 * p.upper.maxCoeff())
+            << name;
+    }
+}
+
+TEST(ActiveSetSolver, WarmStartsGiveTheColdAnswer) {
+    // A smooth sequence: the same pattern, values drifting.
+    test::RandomProblemOptions o;
+    o.rows = 20, o.wires = 70, o.numFree = 3, o.numEquality = 2, o.duplicateWires = 2, o.unreachableRows = 1;
+    o.tensionLow = -0.3, o.tensionHigh = 1.3, o.noise = 0.05;
+    const DistributionProblem base = test::makeRandomProblem(o);
+    ActiveSetSolver warm;
+    DistributionResult warmResult, coldResult;
+    int warmIterations = 0, coldIterations = 0;
+    for (int frame = 0; frame < 20; ++frame) {
+        DistributionProblem p = base;
+        for (int k = 0; k < p.A.nonZeros(); ++k) p.A.valuePtr()[k] *= 1 + 0.02 * std::sin(0.3 * frame + k);
+        for (int i = 0; i < p.getNumRows(); ++i)
+            if (!p.isEquality[static_cast<std::size_t>(i)]) p.target[i] *= 1 + 0.05 * std::cos(0.2 * frame + i);
+        p.target.tail(o.numEquality) = (p.A * Eigen::VectorXd::Constant(p.getNumVariables(), 10.0)).tail(o.numEquality);
+        warm.solve(p, warmResult);
+        ActiveSetSolver cold;
+        cold.solve(p, coldResult);
+        ASSERT_EQ(warmResult.status, DistributionStatus::Optimal) << "frame " << frame;
+        ASSERT_EQ(coldResult.status, DistributionStatus::Optimal) << "frame " << frame;
+        EXPECT_LE((warmResult.x - coldResult.x).cwiseAbs().maxCoeff(), 1e-6 * p.upper.maxCoeff()) << "frame " << frame;
+        EXPECT_LE(warmResult.kkt.getMax(), 1e-6) << "frame " << frame;
+        if (frame > 0) warmIterations += warmResult.iterations, coldIterations += coldResult.iterations;
+    }
+    EXPECT_LT(warmIterations, coldIterations);
+}
+
+TEST(ActiveSetSolver, UnreachableEqualityRowIsInfeasibleWithItsReserve) {
+    test::RandomProblemOptions o;
+    o.unreachableRows = 1;
+    DistributionProblem p = test::makeRandomProblem(o);
+    p.isEquality[0] = true;  // no column reaches row 0
+    p.target[0] = 3.5;
+    ActiveSetSolver solver;
+    DistributionResult result;
+    solver.solve(p, result);
+    EXPECT_EQ(result.status, DistributionStatus::Infeasible);
+    EXPECT_NEAR(result.reserve[0], 3.5, 1e-9);
+    EXPECT_EQ(result.reserve.tail(p.getNumRows() - 1).cwiseAbs().maxCoeff(), 0);
+    expectWithinBounds(p, result.x, "unreachable");
+    // The other rows are solved as if row 0 were not there (it has no column).
+    p.isEquality[0] = false;
+    DistributionResult relaxed;
+    solver.solve(p, relaxed);
+    EXPECT_LE((result.x - relaxed.x).cwiseAbs().maxCoeff(), 1e-6 * p.upper.maxCoeff());
+}
+
+TEST(ActiveSetSolver, KktResidualsDetectAWrongAnswer) {
+    const DistributionProblem p = test::makeRandomProblem(test::makeProblemSweep(-0.5, 1.5, 0.1)[5]);
+    ActiveSetSolver solver;
+    DistributionResult result;
+    solver.solve(p, result);
+    ASSERT_LE(result.kkt.getMax(), 1e-6);
+    // Move one free (interior) variable: the projected gradient no longer vanishes.
+    Eigen::VectorXd x = result.x;
+    for (int j = 0; j < p.getNumBounded(); ++j)
+        if (x[j] > p.lower[j] + 1 && x[j] < p.upper[j] - 1) {
+            x[j] += 1;
+            break;
+        }
+    EXPECT_GT(calcQpKktResiduals(p, x, result.multipliers).dual, 1e-4);
+}
+
+TEST(ActiveSetSolver, RefusesMalformedProblems) {
+    DistributionProblem p = test::makeRandomProblem({});
+    p.weight[3] = 0;
+    ActiveSetSolver solver;
+    DistributionResult result;
+    try {
+        solver.solve(p, result);
+        FAIL() << "a zero weight was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("weight[3]"), std::string::npos) << e.what();
+    }
+    p = test::makeRandomProblem({});
+    p.target.resize(3);
+    EXPECT_THROW(solver.solve(p, result), Error);
+}
+
+}  // namespace
+}  // namespace sinew

@@ -1,0 +1,78 @@
+// sinew's static optimization through OpenSim's unchanged AnalyzeTool setup against OpenSim 4.4.1's
+// results (../shared/data/opensim, see its README: 4.4.1 keeps activations at or above min_control 0.01).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+#include "sinew/io/storage_file.hpp"
+#include "sinew/io/tool_setup.hpp"
+#include "sinew/tools/static_optimization_tool.hpp"
+
+namespace sinew {
+namespace {
+
+const std::filesystem::path kArm26 = std::filesystem::path(SINEW_SHARED_DIR) / "data" / "opensim" / "arm26";
+
+// Per reference column: the RMS difference over the frames both tables have (times within 1e-6 s).
+std::vector<double> calcRmsDifference(const StorageTable& ours, const StorageTable& reference) {
+    std::vector<double> rms;
+    for (const std::string& column : reference.columns) {
+        const auto it = std::find(ours.columns.begin(), ours.columns.end(), column);
+        if (it == ours.columns.end()) {
+            ADD_FAILURE() << "sinew's output lacks OpenSim's column " << column;
+            rms.push_back(NAN);
+            continue;
+        }
+        const std::size_t k = static_cast<std::size_t>(it - ours.columns.begin());
+        const std::size_t c = static_cast<std::size_t>(&column - reference.columns.data());
+        double sum = 0;
+        for (std::size_t r = 0; r < reference.times.size(); ++r) {
+            EXPECT_NEAR(ours.times[r], reference.times[r], 1e-6) << "frame " << r;
+            const double d = ours.rows[r][k] - reference.rows[r][c];
+            sum += d * d;
+        }
+        rms.push_back(std::sqrt(sum / static_cast<double>(reference.times.size())));
+    }
+    return rms;
+}
+
+TEST(StaticOptimizationTool, Arm26MatchesOpenSim) {
+    if (!std::filesystem::exists(kArm26))
+        GTEST_SKIP() << "../shared/data/opensim/arm26 is absent (it ships only with sinew's developer data)";
+    const AnalyzeSetup setup = readAnalyzeSetup((kArm26 / "arm26_Setup_StaticOptimization.xml").string());
+    const std::string output = (std::filesystem::path(::testing::TempDir()) / "sinew_so_arm26").string();
+    const std::vector<std::string> written = runStaticOptimizationTool(setup, output, {});
+    ASSERT_EQ(written.size(), 3u);
+    EXPECT_EQ(std::filesystem::path(written[0]).filename(), "arm26_StaticOptimization_force.sto");
+    EXPECT_EQ(std::filesystem::path(written[1]).filename(), "arm26_StaticOptimization_activation.sto");
+    const StorageTable force = readStorageFile(written[0]), activation = readStorageFile(written[1]);
+    const StorageTable referenceForce = readStorageFile((kArm26 / "opensim-4.4.1" / "arm26_StaticOptimization_force.sto").string());
+    const StorageTable referenceActivation =
+        readStorageFile((kArm26 / "opensim-4.4.1" / "arm26_StaticOptimization_activation.sto").string());
+    ASSERT_EQ(force.times.size(), referenceForce.times.size());
+    ASSERT_EQ(activation.times.size(), referenceActivation.times.size());
+
+    const std::vector<double> forceRms = calcRmsDifference(force, referenceForce);
+    const std::vector<double> activationRms = calcRmsDifference(activation, referenceActivation);
+    std::cout << "arm26 static optimization, RMS difference from OpenSim 4.4.1 (" << force.times.size() << " frames)\n"
+              << "  muscle      force (N)   activation\n";
+    for (std::size_t m = 0; m < referenceForce.columns.size(); ++m) {
+        std::cout << "  " << std::setw(10) << std::left << referenceForce.columns[m] << std::setw(12) << forceRms[m]
+                  << activationRms[m] << "\n";
+        EXPECT_LE(forceRms[m], 5.0) << referenceForce.columns[m];
+        EXPECT_LE(activationRms[m], 0.04) << referenceForce.columns[m];
+    }
+    // OpenSim's bounds hold: every activation within [min_control 0.01, 1].
+    for (const std::vector<double>& row : activation.rows)
+        for (double a : row) {
+            EXPECT_GE(a, 0.01 - 1e-9);
+            EXPECT_LE(a, 1 + 1e-9);
+        }
+}
+
+}  // namespace
+}  // namespace sinew

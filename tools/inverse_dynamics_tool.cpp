@@ -1,0 +1,100 @@
+#include "sinew/tools/inverse_dynamics_tool.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "sinew/core/coordinate_preprocessing.hpp"
+#include "sinew/core/data.hpp"
+#include "sinew/core/error.hpp"
+#include "sinew/core/inverse_dynamics.hpp"
+#include "sinew/core/kinematics.hpp"
+#include "sinew/tools/coordinate_table.hpp"
+#include "sinew/tools/measured_loads.hpp"
+#include "sinew/tools/model_loading.hpp"
+
+namespace sinew {
+namespace {
+
+std::string getForceColumnName(const Coordinate& c) {
+    return c.name + (c.motionType == MotionType::Rotational ? "_moment" : "_force");
+}
+
+}  // namespace
+
+StorageTable runInverseDynamics(const Model& model, const StorageTable& coordinates, const ExternalLoads* loads,
+                                const InverseDynamicsOptions& options) {
+    const std::vector<Coordinate>& modelCoordinates = model.getCoordinates();
+    const CoordinateSamples samples = readCoordinateSamples(model, coordinates);
+    CoordinatePreprocessingOptions preprocessing;
+    preprocessing.lowpassCutoffHz = options.lowpassCutoffHz;
+    preprocessing.startTime = options.startTime;
+    preprocessing.finalTime = options.finalTime;
+    for (const Coordinate& c : modelCoordinates) preprocessing.columnNames.push_back(c.name);
+    const CoordinateTrajectory trajectory = preprocessCoordinates(samples.times, samples.q, preprocessing);
+
+    std::optional<MeasuredLoads> measured;
+    if (loads) measured.emplace(model, *loads);
+
+    StorageTable result;
+    result.name = "Inverse Dynamics Generalized Forces";
+    for (const Coordinate& c : modelCoordinates) result.columns.push_back(getForceColumnName(c));
+    Data data(model);
+    std::vector<SpatialVector> linkForces(static_cast<std::size_t>(model.getNumLinks()));
+    const Eigen::Index n = samples.q.cols();
+    Eigen::VectorXd q(n), u(n), udot(n), tau(model.getNumU());
+    const int frames = static_cast<int>(trajectory.times.size());
+    for (int i = 0; i < frames; ++i) {
+        const double t = trajectory.times[i];
+        q = trajectory.q.row(i).transpose();
+        u = trajectory.qdot.row(i).transpose();
+        udot = trajectory.qddot.row(i).transpose();
+        std::fill(linkForces.begin(), linkForces.end(), SpatialVector::Zero());
+        if (measured) {
+            calcPositionKinematics(model, data, q);
+            measured->addLinkForces(data, t, linkForces);
+        }
+        calcInverseDynamics(model, data, q, u, udot, linkForces, tau);
+        if (!tau.allFinite())
+            throw Error("inverse dynamics at t = " + std::to_string(t) + " s (frame " + std::to_string(i + 1) +
+                        "): a generalized force is not finite");
+        result.times.push_back(t);
+        result.rows.emplace_back(tau.data(), tau.data() + tau.size());
+        if (options.onFrame) options.onFrame(i + 1, frames);
+    }
+    return result;
+}
+
+std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std::string& outputDirectory,
+                                   const std::function<void(const std::string&)>& notes,
+                                   const std::function<void(int frame, int frames)>& onFrame) {
+    const Model model = loadModel(setup.modelFile, notes);
+    if (notes) {
+        const auto& excluded = setup.forcesToExclude;
+        const bool musclesOut = std::any_of(excluded.begin(), excluded.end(), [](const std::string& name) {
+            return name == "Muscles" || name == "All" || name == "Actuators";
+        });
+        if (!musclesOut && model.getNumWires() > 0)
+            notes("forces_to_exclude does not name Muscles, but sinew's inverse dynamics always leaves the wires out");
+    }
+    std::optional<ExternalLoads> loads;
+    if (!setup.externalLoadsFile.empty()) {
+        loads = readExternalLoads(setup.externalLoadsFile);
+        if (notes && !loads->modelKinematicsFile.empty())
+            notes("external_loads_model_kinematics_file is ignored: the points are taken as given in their frames");
+    }
+    InverseDynamicsOptions options;
+    options.lowpassCutoffHz = setup.lowpassCutoffFrequencyForCoordinates;
+    options.startTime = setup.startTime;
+    options.finalTime = setup.endTime;
+    options.onFrame = onFrame;
+    const StorageTable result =
+        runInverseDynamics(model, readStorageFile(setup.coordinatesFile), loads ? &*loads : nullptr, options);
+    const std::filesystem::path directory = outputDirectory.empty() ? setup.resultsDirectory : outputDirectory;
+    std::filesystem::create_directories(directory);
+    const std::string path = (directory / setup.outputGenForceFile).string();
+    writeStorageFile(result, path);
+    return path;
+}
+
+}  // namespace sinew

@@ -1,0 +1,74 @@
+#include "sinew/tools/measured_loads.hpp"
+
+#include "sinew/core/error.hpp"
+
+namespace sinew {
+namespace {
+
+int findBody(const Model& model, const std::string& body, const ExternalForce& force, const char* role) {
+    const int link = model.findLinkIndex(body);
+    if (link == Model::kNotFound)
+        throw ModelError(force.where, "external force '" + force.name + "': " + role + " body '" + body +
+                                          "' is not in model '" + model.getName() + "'");
+    return link;
+}
+
+}  // namespace
+
+Eigen::Vector3d MeasuredLoads::Channel::calcValue(double t) const {
+    if (splines.empty()) return Eigen::Vector3d::Zero();
+    return {splines[0].calcValue(t), splines[1].calcValue(t), splines[2].calcValue(t)};
+}
+
+MeasuredLoads::MeasuredLoads(const Model& model, const ExternalLoads& loads) {
+    const StorageTable& table = loads.data;
+    if (table.times.size() < 2)
+        throw Error(loads.dataFile + ": external load data need at least two rows, found " +
+                    std::to_string(table.times.size()));
+    const Eigen::Map<const Eigen::VectorXd> times(table.times.data(), static_cast<Eigen::Index>(table.times.size()));
+    // OpenSim's ExternalForce: GCVSpline(3, ...) with its default error variance 0, i.e. interpolation.
+    const int degree = table.times.size() >= 4 ? 3 : 1;
+    auto makeChannel = [&](const std::array<int, 3>& columns) {
+        Channel channel;
+        if (columns[0] < 0) return channel;
+        Eigen::VectorXd values(times.size());
+        for (int axis = 0; axis < 3; ++axis) {
+            for (Eigen::Index r = 0; r < times.size(); ++r)
+                values[r] = table.rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(columns[static_cast<std::size_t>(axis)])];
+            channel.splines.push_back(SmoothingSpline::fitFromErrorVariance(degree, times, values, 0));
+        }
+        return channel;
+    };
+    for (const ExternalForce& force : loads.forces) {
+        if (!force.appliesForce) continue;
+        Load load;
+        load.appliedTo = findBody(model, force.appliedToBody, force, "applied-to");
+        load.forceFrame = findBody(model, force.forceExpressedInBody, force, "force-expressed-in");
+        load.pointFrame = findBody(model, force.pointExpressedInBody, force, "point-expressed-in");
+        load.force = makeChannel(force.forceColumns);
+        load.point = makeChannel(force.pointColumns);
+        load.torque = makeChannel(force.torqueColumns);
+        loads_.push_back(std::move(load));
+    }
+}
+
+void MeasuredLoads::addLinkForces(const Data& data, double t, std::vector<SpatialVector>& linkForces) const {
+    auto toGround = [&](int link, const Eigen::Vector3d& v) -> Eigen::Vector3d {
+        return link == kGround ? v : Eigen::Vector3d(data.R_GB[static_cast<std::size_t>(link)] * v);
+    };
+    for (const Load& load : loads_) {
+        if (load.appliedTo == kGround) continue;
+        const std::size_t b = static_cast<std::size_t>(load.appliedTo);
+        const Eigen::Vector3d f_G = toGround(load.forceFrame, load.force.calcValue(t));
+        // Without a point, OpenSim applies the force at the body's origin.
+        Eigen::Vector3d p_G = data.p_GB[b];
+        if (!load.point.splines.empty()) {
+            p_G = toGround(load.pointFrame, load.point.calcValue(t));
+            if (load.pointFrame != kGround) p_G += data.p_GB[static_cast<std::size_t>(load.pointFrame)];
+        }
+        linkForces[b].head<3>() += (p_G - data.p_GB[b]).cross(f_G) + toGround(load.forceFrame, load.torque.calcValue(t));
+        linkForces[b].tail<3>() += f_G;
+    }
+}
+
+}  // namespace sinew

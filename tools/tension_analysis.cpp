@@ -1,0 +1,181 @@
+#include "sinew/tools/tension_analysis.hpp"
+
+#include <cmath>
+
+#include "sinew/core/error.hpp"
+#include "sinew/core/inverse_dynamics.hpp"
+#include "sinew/core/thelen_muscle.hpp"
+#include "sinew/core/wire_jacobian.hpp"
+#include "sinew/core/wire_path.hpp"
+
+namespace sinew {
+namespace {
+
+const ThelenMuscle* findThelenMuscle(const Wire& wire) { return dynamic_cast<const ThelenMuscle*>(wire.law.get()); }
+
+// options.maxTension, or each wire's max isometric force.
+Eigen::VectorXd getWireStrengths(const Model& model, const TensionAnalysisOptions& options) {
+    const int numWires = model.getNumWires();
+    if (options.maxTension.size() > 0) {
+        if (options.maxTension.size() != numWires)
+            throw Error("tensions: " + std::to_string(options.maxTension.size()) + " maximum tensions given for " +
+                        std::to_string(numWires) + " wires");
+        return options.maxTension;
+    }
+    Eigen::VectorXd strength(numWires);
+    for (int w = 0; w < numWires; ++w) {
+        const Wire& wire = model.getWire(w);
+        const ThelenMuscle* muscle = findThelenMuscle(wire);
+        if (!muscle)
+            throw Error("tensions: wire '" + wire.name + "' has force law '" + wire.lawSpec.type +
+                        "', which has no max isometric force: give every wire's maximum tension");
+        strength[w] = muscle->getParameters().maxIsometricForce;
+    }
+    return strength;
+}
+
+StaticOptimizationSettings makeStaticOptimizationSettings(const Eigen::VectorXd& maxIsometricForce,
+                                                          const TensionAnalysisOptions& options) {
+    StaticOptimizationSettings settings;
+    settings.maxIsometricForce = maxIsometricForce;
+    settings.minActivation = options.minActivation;
+    settings.maxActivation = options.maxActivation;
+    settings.reserves = options.reserves;
+    return settings;
+}
+
+}  // namespace
+
+const char* toString(TensionMethod method) {
+    switch (method) {
+        case TensionMethod::Lp: return "lp";
+        case TensionMethod::Qp: return "qp";
+        case TensionMethod::StaticOptimization: return "so";
+    }
+    return "?";
+}
+
+TensionMethod parseTensionMethod(const std::string& name) {
+    if (name == "lp") return TensionMethod::Lp;
+    if (name == "qp") return TensionMethod::Qp;
+    if (name == "so") return TensionMethod::StaticOptimization;
+    throw Error("unknown tension method '" + name + "' (expected lp, qp or so)");
+}
+
+TensionAnalysis::TensionAnalysis(const Model& model, TensionAnalysisOptions options)
+    : model_(model),
+      options_(std::move(options)),
+      data_(model),
+      maxIsometricForce_(getWireStrengths(model, options_)),
+      builder_(model, maxIsometricForce_, options_.problem),
+      problem_(builder_.makeProblem()),
+      J_(model.getNumWires(), model.getNumU()),
+      forceMultiplier_(Eigen::VectorXd::Ones(model.getNumWires())),
+      forcePerActivation_(maxIsometricForce_) {
+    const int nu = model.getNumU(), numWires = model.getNumWires();
+    if (numWires == 0) throw Error("tensions: model '" + model.getName() + "' has no wires");
+    switch (options_.method) {
+        case TensionMethod::Lp: lp_ = std::make_unique<LpSolver>(); break;
+        case TensionMethod::Qp: qp_ = std::make_unique<ActiveSetSolver>(); break;
+        case TensionMethod::StaticOptimization:
+            if (options_.useMusclePhysiology)
+                for (const Wire& wire : model.getWires())
+                    if (!findThelenMuscle(wire))
+                        throw Error("tensions: wire '" + wire.name + "' has force law '" + wire.lawSpec.type +
+                                    "'; muscle physiology in static optimization needs thelen2003_muscle");
+            so_ = std::make_unique<StaticOptimization>(makeStaticOptimizationSettings(maxIsometricForce_, options_));
+            break;
+    }
+    frame_.tau.setZero(nu);
+    frame_.tension.setZero(numWires);
+    frame_.activation.setZero(numWires);
+    frame_.reserveForce.setZero(static_cast<Eigen::Index>(options_.reserves.size()));
+    frame_.residual.setZero(nu);
+    frame_.reserve.setZero(nu);
+    frame_.unactuated.assign(static_cast<std::size_t>(nu), 0);
+}
+
+void TensionAnalysis::reset() {
+    if (lp_) lp_->reset();
+    if (qp_) qp_->reset();
+    if (so_) so_->reset();
+}
+
+// A DOF's row of A is the generalized force per unit of each variable; a row that is zero to rounding
+// (a floating root under internal wire forces) cannot be distributed, so its target is set to zero and
+// its tau reported as residual.
+void TensionAnalysis::markUnactuated() {
+    const Eigen::Index nu = problem_.getNumRows();
+    Eigen::VectorXd& rowSize = frame_.reserve;  // workspace, overwritten after the solve
+    rowSize.setZero();
+    for (Eigen::Index k = 0; k < problem_.A.outerSize(); ++k)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(problem_.A, k); it; ++it)
+            rowSize[it.row()] = std::fmax(rowSize[it.row()], std::fabs(it.value()));
+    const double threshold = options_.unactuatedThreshold * rowSize.maxCoeff();
+    frame_.unactuatedResidual = 0;
+    for (Eigen::Index i = 0; i < nu; ++i) {
+        const bool unactuated = !(rowSize[i] > threshold);
+        frame_.unactuated[static_cast<std::size_t>(i)] = unactuated;
+        if (unactuated) {
+            frame_.unactuatedResidual += frame_.tau[i] * frame_.tau[i];
+            problem_.target[i] = 0;
+        }
+    }
+    frame_.unactuatedResidual = std::sqrt(frame_.unactuatedResidual);
+}
+
+// OpenSim's StaticOptimizationTarget::prepareToOptimize with use_muscle_physiology: the force per unit
+// activation is Thelen2003Muscle::calcInextensibleTendonActiveFiberForce(s, 1): max isometric force times
+// fl, fv (taken at activation 1) and cos(pennation) on a rigid tendon at the path's length and speed.
+void TensionAnalysis::calcForceMultipliers() {
+    if (!options_.useMusclePhysiology) return;
+    calcWireSpeeds(model_, data_);
+    for (int w = 0; w < model_.getNumWires(); ++w) {
+        const ThelenFiberState fiber =
+            findThelenMuscle(model_.getWire(w))->calcFiberState(data_.wireLength[w], data_.wireSpeed[w], 1.0);
+        forceMultiplier_[w] = fiber.activeForceLength * fiber.forceVelocity * fiber.cosPennation;
+    }
+    forcePerActivation_ = maxIsometricForce_.cwiseProduct(forceMultiplier_);
+}
+
+const TensionFrame& TensionAnalysis::calcFrame(const Eigen::VectorXd& q, const Eigen::VectorXd& u,
+                                               const Eigen::VectorXd& udot,
+                                               const std::vector<SpatialVector>& appliedLinkForces) {
+    TensionFrame& frame = frame_;
+    calcInverseDynamics(model_, data_, q, u, udot, appliedLinkForces, frame.tau);  // kinematics at (q, u) too
+    calcWirePaths(model_, data_);
+    calcWireJacobian(model_, data_, J_);
+    builder_.update(data_, J_, frame.tau, problem_);
+    markUnactuated();
+
+    const int numWires = model_.getNumWires();
+    const DistributionResult* result = &distribution_;
+    if (options_.method == TensionMethod::StaticOptimization) {
+        calcForceMultipliers();
+        so_->solve(problem_, forceMultiplier_, soResult_);
+        result = &soResult_.distribution;
+        frame.activation = soResult_.activation;
+        frame.tension = soResult_.tension;
+        frame.reserveForce = soResult_.reserveForce;
+        frame.activeWires = 0;
+        for (int w = 0; w < numWires; ++w) {
+            const double lower = options_.minActivation.size() > 0 ? options_.minActivation[w] : 0.0;
+            frame.activeWires += soResult_.activation[w] > lower + 1e-9;
+        }
+    } else {
+        if (lp_) lp_->solve(problem_, distribution_);
+        else qp_->solve(problem_, distribution_);
+        frame.tension = distribution_.x.head(numWires);
+        frame.activeWires = distribution_.activeVariables;
+    }
+    frame.status = result->status;
+    frame.iterations = result->iterations;
+    frame.reserve = result->reserve;
+    frame.residual = result->residual;
+    for (Eigen::Index i = 0; i < frame.residual.size(); ++i)
+        if (frame.unactuated[static_cast<std::size_t>(i)]) frame.residual[i] = frame.tau[i];
+    frame.torqueError = 0.5 * frame.residual.squaredNorm();
+    return frame;
+}
+
+}  // namespace sinew
