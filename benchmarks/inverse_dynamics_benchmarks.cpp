@@ -47,11 +47,8 @@ void runFrame(benchmark::State& state) {
     const ExternalLoads loads = readExternalLoads(setup.externalLoadsFile);
     const MeasuredLoads measured(model, loads);
     const CoordinateSamples samples = readCoordinateSamples(model, readStorageFile(setup.coordinatesFile));
-    CoordinatePreprocessingOptions options;
-    options.lowpassCutoffHz = setup.lowpassCutoffFrequencyForCoordinates;
-    options.startTime = setup.startTime;
-    options.finalTime = setup.endTime;
-    const CoordinateTrajectory trajectory = preprocessCoordinates(samples.times, samples.q, options);
+    const CoordinateTrajectory trajectory = preprocessCoordinateSamples(
+        model, samples, setup.lowpassCutoffFrequencyForCoordinates, setup.startTime, setup.endTime);
     Data data(model);
     std::vector<SpatialVector> linkForces(static_cast<std::size_t>(model.getNumLinks()));
     Eigen::VectorXd q, u, udot, tau(model.getNumU());

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -19,7 +20,9 @@ const char* kUsage =
     "  static optimization (least squared activations). DOFs no wire reaches (a floating root) keep their\n"
     "  generalized force as residual. Writes TENSIONS.sto, TENSIONS_report.sto (per frame: status 0 optimal,\n"
     "  1 infeasible, 2 failed; Z; active wires; residuals and phase-1 reserves per DOF) and, for so,\n"
-    "  TENSIONS_activations.sto. Infeasible and failed frames are kept and counted. MODEL: .osim or .yaml.\n"
+    "  TENSIONS_activations.sto. Infeasible and failed frames are kept and counted. Motion rows with NaN or\n"
+    "  empty cells are left out of the splines and written with status 3 and zero tensions, their times\n"
+    "  listed. MODEL: .osim or .yaml.\n"
     "  --external-loads X.xml   OpenSim ExternalLoads (e.g. ground reactions)\n"
     "  --lowpass HZ             low-pass cut-off for the coordinates (default: no filtering)\n"
     "  --start T, --end T       time range, s (default: the whole motion)\n"
@@ -58,7 +61,8 @@ int runTensions(const std::vector<std::string>& args) {
         if (!progress) progress.emplace("tensions (" + method + ")", frames);
         progress->update(frame);
     };
-    const TensionMotionResult result = runTensionAnalysis(model, readStorageFile(motionPath), loads ? &*loads : nullptr, options);
+    const StorageTable motion = readStorageFile(motionPath, NonFinite::Allow);
+    const TensionMotionResult result = runTensionAnalysis(model, motion, loads ? &*loads : nullptr, options);
     if (progress) progress->finish();
     const std::filesystem::path parent = std::filesystem::path(output).parent_path();
     if (!parent.empty()) std::filesystem::create_directories(parent);
@@ -68,9 +72,22 @@ int runTensions(const std::vector<std::string>& args) {
         writeStorageFile(result.activations, withSuffix(output, "_activations"));
     std::printf("%zu frames, %zu wires (%s) -> %s\n", result.tensions.times.size(), result.tensions.columns.size(),
                 method.c_str(), output.c_str());
+    if (!result.missingRows.empty()) {
+        std::printf("%zu motion rows have NaN or empty coordinates and were skipped (status 3, zero tensions):",
+                    result.missingRows.size());
+        const std::size_t listed = std::min<std::size_t>(result.missingRows.size(), 10);
+        for (std::size_t k = 0; k < listed; ++k) {
+            const int row = result.missingRows[k];
+            std::printf("%s row %d (t = %g s)", k ? "," : "", row + 1, motion.times[static_cast<std::size_t>(row)]);
+        }
+        if (listed < result.missingRows.size()) std::printf(", and %zu more", result.missingRows.size() - listed);
+        std::printf("\n");
+    }
     if (result.flaggedFrames > 0)
-        std::printf("%d frames not optimal (infeasible or failed): see status and residuals in %s\n",
-                    result.flaggedFrames, withSuffix(output, "_report").c_str());
+        std::printf("%d of %zu frames flagged: %d infeasible (status 1), %d failed (status 2), %zu missing input "
+                    "(status 3); see status and residuals in %s\n",
+                    result.flaggedFrames, result.tensions.times.size(), result.infeasibleFrames, result.failedFrames,
+                    result.missingRows.size(), withSuffix(output, "_report").c_str());
     return 0;
 }
 

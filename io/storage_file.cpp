@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -30,14 +31,16 @@ std::string trim(const std::string& text) {
 
 // The cells of a header or data line: tab-separated when the line has a tab (OpenSim's own files; a cell
 // may then be empty), else separated by runs of blanks (hand-written .mot files). Empty cells at the end
-// of the line (trailing tabs) are dropped.
-std::vector<std::string> splitCells(const std::string& line) {
+// of the line (trailing tabs) are dropped; a tab-separated line is then padded with empty cells to
+// `minCells` (a line's trailing tabs are trimmed before it gets here, so a short row may be empty cells).
+std::vector<std::string> splitCells(const std::string& line, std::size_t minCells = 0) {
     std::vector<std::string> cells;
     if (line.find('\t') != std::string::npos) {
         std::istringstream fields(line);
         std::string cell;
         while (std::getline(fields, cell, '\t')) cells.push_back(trim(cell));
         while (!cells.empty() && cells.back().empty()) cells.pop_back();
+        if (cells.size() < minCells) cells.resize(minCells);
     } else {
         std::istringstream fields(line);
         std::string cell;
@@ -49,7 +52,7 @@ std::vector<std::string> splitCells(const std::string& line) {
 // Reads one OpenSim storage file, turning every problem into an Error at "file:line".
 class StorageReader {
 public:
-    explicit StorageReader(std::string path) : path_(std::move(path)), in_(path_) {
+    StorageReader(std::string path, NonFinite nonFinite) : path_(std::move(path)), in_(path_), nonFinite_(nonFinite) {
         if (!in_) throw Error(path_ + ": cannot open for reading");
     }
 
@@ -66,6 +69,7 @@ public:
 private:
     std::string path_;
     std::ifstream in_;
+    NonFinite nonFinite_;
     int lineNumber_ = 0;
     StorageTable table_;
     std::optional<long> nRows_, nColumns_;
@@ -153,22 +157,27 @@ private:
         std::string line;
         while (nextLine(line)) {
             if (trim(line).empty()) continue;
-            const std::vector<std::string> cells = splitCells(line);
+            const std::size_t expected = table_.columns.size() + 1;
+            const bool allowNonFinite = nonFinite_ == NonFinite::Allow;
+            const std::vector<std::string> cells = splitCells(line, allowNonFinite ? expected : 0);
             std::vector<double> values;
             values.reserve(cells.size());
             for (std::size_t c = 0; c < cells.size(); ++c) {
                 const std::string& cell = cells[c];
+                if (cell.empty() && allowNonFinite && c > 0) {
+                    values.push_back(std::numeric_limits<double>::quiet_NaN());
+                    continue;
+                }
                 if (cell.empty()) fail(lineNumber_, "empty cell in " + describeColumn(c));
                 // strtod, unlike stod, accepts the subnormal numbers the writer can produce.
                 char* end = nullptr;
                 const double value = std::strtod(cell.c_str(), &end);
                 if (end != cell.c_str() + cell.size())
                     fail(lineNumber_, "'" + cell + "' is not a number (" + describeColumn(c) + ")");
-                if (!std::isfinite(value))
+                if (!std::isfinite(value) && (!allowNonFinite || c == 0))
                     fail(lineNumber_, "'" + cell + "' is not a finite number (" + describeColumn(c) + ")");
                 values.push_back(value);
             }
-            const std::size_t expected = table_.columns.size() + 1;
             if (values.size() != expected)
                 fail(lineNumber_, std::to_string(values.size()) + " values, expected " + std::to_string(expected) +
                                       (values.size() < expected ? "; the first missing is " : "; the first extra is ") +
@@ -230,7 +239,9 @@ void writeStorageFile(const StorageTable& table, const std::string& path) {
     if (!out) throw Error(path + ": write failed");
 }
 
-StorageTable readStorageFile(const std::string& path) { return StorageReader(path).read(); }
+StorageTable readStorageFile(const std::string& path, NonFinite nonFinite) {
+    return StorageReader(path, nonFinite).read();
+}
 
 std::vector<int> matchStorageColumns(const StorageTable& table, const std::vector<std::string>& expected,
                                      ExtraColumns extra) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Builds sinew (scripts/setup.sh), runs the benchmarks into build/benchmarks.json, then pairs sinew with
-# Simbody per model, fits the scaling slopes and plots them (scripts/plot_scaling.py ->
-# build/forward_dynamics_scaling.png). docs/performance.md has the numbers of the last full run.
+# Builds sinew (scripts/setup.sh), runs the benchmarks into build/benchmarks.json and the tension ones into
+# build/tension_benchmarks.json, then pairs sinew with Simbody per model, fits the scaling slopes and plots
+# them (scripts/plot_scaling.py -> build/forward_dynamics_scaling.png). docs/performance.md has the numbers
+# of the last full run.
 # usage: scripts/bench.sh [google-benchmark args...]   e.g. --benchmark_filter=wholebody
 # Arguments come after the defaults below and override them. A full run takes about 3 minutes on 2 cores.
 set -euo pipefail
@@ -13,6 +14,10 @@ cpu_model=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1 | 
 # Three repetitions of at least 0.2 s each; plot_scaling.py takes the fastest, the one least disturbed by
 # other work on the machine, and names the benchmarks whose repetitions disagree by more than 10%.
 build/bin/sinew_benchmarks --benchmark_out=build/benchmarks.json --benchmark_out_format=json \
+  --benchmark_context="cpu_model=${cpu_model:-unknown}" \
+  --benchmark_min_time=0.2 --benchmark_repetitions=3 --benchmark_display_aggregates_only=true "$@"
+# Tension distribution and whole frames of tensions from motion (docs/tensions-from-motion.md), same settings.
+build/bin/tension_benchmarks --benchmark_out=build/tension_benchmarks.json --benchmark_out_format=json \
   --benchmark_context="cpu_model=${cpu_model:-unknown}" \
   --benchmark_min_time=0.2 --benchmark_repetitions=3 --benchmark_display_aggregates_only=true "$@"
 

@@ -31,4 +31,14 @@ CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& 
     return samples;
 }
 
+CoordinateTrajectory preprocessCoordinateSamples(const Model& model, const CoordinateSamples& samples,
+                                                 double lowpassCutoffHz, double startTime, double finalTime) {
+    CoordinatePreprocessingOptions options;
+    options.lowpassCutoffHz = lowpassCutoffHz;
+    options.startTime = startTime;
+    options.finalTime = finalTime;
+    for (const Coordinate& c : model.getCoordinates()) options.columnNames.push_back(c.name);
+    return preprocessCoordinates(samples.times, samples.q, options);
+}
+
 }  // namespace sinew

@@ -26,12 +26,8 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
                                 const InverseDynamicsOptions& options) {
     const std::vector<Coordinate>& modelCoordinates = model.getCoordinates();
     const CoordinateSamples samples = readCoordinateSamples(model, coordinates);
-    CoordinatePreprocessingOptions preprocessing;
-    preprocessing.lowpassCutoffHz = options.lowpassCutoffHz;
-    preprocessing.startTime = options.startTime;
-    preprocessing.finalTime = options.finalTime;
-    for (const Coordinate& c : modelCoordinates) preprocessing.columnNames.push_back(c.name);
-    const CoordinateTrajectory trajectory = preprocessCoordinates(samples.times, samples.q, preprocessing);
+    const CoordinateTrajectory trajectory = preprocessCoordinateSamples(model, samples, options.lowpassCutoffHz,
+                                                                        options.startTime, options.finalTime);
 
     std::optional<MeasuredLoads> measured;
     if (loads) measured.emplace(model, *loads);

@@ -27,6 +27,24 @@ std::vector<SmoothingSpline> fitSpeedSplines(const CoordinateTrajectory& traject
     return splines;
 }
 
+// The rows whose coordinates are all finite; `missing` gets the indices of the others within
+// [startTime, finalTime].
+CoordinateSamples keepFiniteRows(const CoordinateSamples& samples, const TensionMotionOptions& options,
+                                 std::vector<int>& missing) {
+    std::vector<Eigen::Index> kept;
+    for (Eigen::Index r = 0; r < samples.times.size(); ++r) {
+        if (samples.q.row(r).allFinite())
+            kept.push_back(r);
+        else if (samples.times[r] >= options.startTime && samples.times[r] <= options.finalTime)
+            missing.push_back(static_cast<int>(r));
+    }
+    if (kept.size() == static_cast<std::size_t>(samples.times.size())) return samples;
+    CoordinateSamples finite;
+    finite.times = samples.times(kept);
+    finite.q = samples.q(kept, Eigen::all);
+    return finite;
+}
+
 StorageTable makeTable(const std::string& name, const std::vector<std::string>& columns) {
     StorageTable table;
     table.name = name;
@@ -39,13 +57,11 @@ StorageTable makeTable(const std::string& name, const std::vector<std::string>& 
 TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& motion, const ExternalLoads* loads,
                                        const TensionMotionOptions& options) {
     const std::vector<Coordinate>& coordinates = model.getCoordinates();
-    const CoordinateSamples samples = readCoordinateSamples(model, motion);
-    CoordinatePreprocessingOptions preprocessing;
-    preprocessing.lowpassCutoffHz = options.lowpassCutoffHz;
-    preprocessing.startTime = options.startTime;
-    preprocessing.finalTime = options.finalTime;
-    for (const Coordinate& c : coordinates) preprocessing.columnNames.push_back(c.name);
-    const CoordinateTrajectory trajectory = preprocessCoordinates(samples.times, samples.q, preprocessing);
+    TensionMotionResult result;
+    const CoordinateSamples allSamples = readCoordinateSamples(model, motion);
+    const CoordinateSamples samples = keepFiniteRows(allSamples, options, result.missingRows);
+    const CoordinateTrajectory trajectory = preprocessCoordinateSamples(model, samples, options.lowpassCutoffHz,
+                                                                        options.startTime, options.finalTime);
     std::vector<SmoothingSpline> speedSplines;
     if (options.accelerationsFromSpeedSplines) speedSplines = fitSpeedSplines(trajectory);
 
@@ -59,7 +75,6 @@ TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& m
     for (const Wire& wire : model.getWires()) wireNames.push_back(wire.name);
     for (const Coordinate& c : coordinates) reportColumns.push_back(c.name + "_residual");
     for (const Coordinate& c : coordinates) reportColumns.push_back(c.name + "_reserve");
-    TensionMotionResult result;
     result.tensions = makeTable("Wire tensions (" + std::string(toString(options.analysis.method)) + ")", wireNames);
     result.report = makeTable("Tension report", reportColumns);
     if (staticOptimization) {
@@ -73,9 +88,30 @@ TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& m
     std::vector<SpatialVector> linkForces(static_cast<std::size_t>(model.getNumLinks()));
     const Eigen::Index n = samples.q.cols();
     Eigen::VectorXd q(n), u(n), udot(n);
+    const auto append = [](StorageTable& table, double t, const Eigen::VectorXd& values) {
+        table.times.push_back(t);
+        table.rows.emplace_back(values.data(), values.data() + values.size());
+    };
+    // A frame without input: zeros everywhere but its status, so that no table holds NaN.
+    const auto appendMissing = [&](double t) {
+        append(result.tensions, t, Eigen::VectorXd::Zero(model.getNumWires()));
+        if (staticOptimization) {
+            append(result.activations, t, Eigen::VectorXd::Zero(model.getNumWires()));
+            append(result.reserves, t, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(options.analysis.reserves.size())));
+        }
+        Eigen::VectorXd row = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(reportColumns.size()));
+        row[0] = kMissingInputStatus;
+        append(result.report, t, row);
+    };
+    const std::vector<int>& missing = result.missingRows;
+    std::size_t nextMissing = 0;
     const int frames = static_cast<int>(trajectory.times.size());
     for (int i = 0; i < frames; ++i) {
         const double t = trajectory.times[i];
+        for (; nextMissing < missing.size() && allSamples.times[missing[nextMissing]] <= t; ++nextMissing)
+            appendMissing(allSamples.times[missing[nextMissing]]);
+        // After resampling (--lowpass over a gap) a frame may fall on a missing row's time: it stays flagged.
+        if (nextMissing > 0 && allSamples.times[missing[nextMissing - 1]] == t) continue;
         q = trajectory.q.row(i).transpose();
         u = trajectory.qdot.row(i).transpose();
         if (options.accelerationsFromSpeedSplines)
@@ -91,15 +127,12 @@ TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& m
         if (!frame.tau.allFinite())
             throw Error("tensions at t = " + std::to_string(t) + " s (frame " + std::to_string(i + 1) +
                         "): a generalized force from inverse dynamics is not finite");
-        result.flaggedFrames += frame.status != DistributionStatus::Optimal;
-        const auto append = [t](StorageTable& table, const Eigen::VectorXd& values) {
-            table.times.push_back(t);
-            table.rows.emplace_back(values.data(), values.data() + values.size());
-        };
-        append(result.tensions, frame.tension);
+        result.infeasibleFrames += frame.status == DistributionStatus::Infeasible;
+        result.failedFrames += frame.status == DistributionStatus::Failed;
+        append(result.tensions, t, frame.tension);
         if (staticOptimization) {
-            append(result.activations, frame.activation);
-            append(result.reserves, frame.reserveForce);
+            append(result.activations, t, frame.activation);
+            append(result.reserves, t, frame.reserveForce);
         }
         std::vector<double> row = {static_cast<double>(frame.status), frame.torqueError,
                                    static_cast<double>(frame.activeWires), static_cast<double>(frame.iterations),
@@ -110,6 +143,8 @@ TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& m
         result.report.rows.push_back(std::move(row));
         if (options.onFrame) options.onFrame(i + 1, frames);
     }
+    for (; nextMissing < missing.size(); ++nextMissing) appendMissing(allSamples.times[missing[nextMissing]]);
+    result.flaggedFrames = result.infeasibleFrames + result.failedFrames + static_cast<int>(missing.size());
     return result;
 }
 

@@ -96,6 +96,39 @@ TEST(StorageFile, NaNInfAndEmptyCellsNameTheirColumn) {
     EXPECT_TRUE(rejectsAt(kHeader + "time\ta\tb\n0\t\t2\n", 8, {"empty cell", "column 2 'a'"}));
 }
 
+TEST(StorageFile, NonFiniteCellsReadWhenAllowed) {
+    // Tab-separated: nan, inf, an empty cell in the middle and cells cut off at the end read as NaN; blank
+    // separated: nan and inf words.
+    const std::string path = writeText("motion\nendheader\ntime\ta\tb\tc\n0\t1\tnan\t-inf\n0.1\t\t2\t3\n0.2\t4\t\t\n"
+                                       "0.3\t5\n0.4 NaN 6 inf\n");
+    const StorageTable read = readStorageFile(path, NonFinite::Allow);
+    ASSERT_EQ(read.rows.size(), 5u);
+    EXPECT_EQ(read.times, (std::vector<double>{0, 0.1, 0.2, 0.3, 0.4}));
+    const auto isNaN = [](double value) { return std::isnan(value); };
+    EXPECT_EQ(read.rows[0][0], 1);
+    EXPECT_TRUE(isNaN(read.rows[0][1]));
+    EXPECT_EQ(read.rows[0][2], -HUGE_VAL);
+    EXPECT_TRUE(isNaN(read.rows[1][0]));
+    EXPECT_EQ(read.rows[1][1], 2);
+    EXPECT_EQ(read.rows[2][0], 4);
+    EXPECT_TRUE(isNaN(read.rows[2][1]) && isNaN(read.rows[2][2]));
+    EXPECT_TRUE(read.rows[3][0] == 5 && isNaN(read.rows[3][1]) && isNaN(read.rows[3][2]));
+    EXPECT_TRUE(isNaN(read.rows[4][0]) && read.rows[4][1] == 6 && read.rows[4][2] == HUGE_VAL);
+    // The default still refuses the same file, at the first non-finite cell.
+    EXPECT_THROW(readStorageFile(path), Error);
+
+    // What stays refused: a non-finite or empty time, a blank-separated row that is short, a non-number.
+    const auto refusedAt = [](const std::string& text, int line, const std::vector<std::string>& words) {
+        const std::string file = writeText(text);
+        return test::throwsErrorAt([&] { readStorageFile(file, NonFinite::Allow); }, file + ":" + std::to_string(line) + ":",
+                                   words, text);
+    };
+    EXPECT_TRUE(refusedAt(kHeader + "time\ta\tb\n0\t1\t2\nnan\t1\t2\n", 9, {"'nan'", "column 1 'time'", "finite"}));
+    EXPECT_TRUE(refusedAt(kHeader + "time\ta\tb\n\t1\t2\n", 8, {"empty cell", "column 1 'time'"}));
+    EXPECT_TRUE(refusedAt(kHeader + "time a b\n0 1 2\n0.1 1\n", 9, {"2 values", "expected 3"}));
+    EXPECT_TRUE(refusedAt(kHeader + "time\ta\tb\n0\tx\t2\n", 8, {"'x'", "not a number"}));
+}
+
 TEST(StorageFile, TimeMustIncrease) {
     EXPECT_TRUE(rejectsAt(kHeader + "time\ta\tb\n0.1\t1\t2\n0.1\t1\t2\n", 9, {"time 0.1 does not increase"}));
 }

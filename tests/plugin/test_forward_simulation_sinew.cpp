@@ -11,21 +11,10 @@
 #include "sinew/core/forward_simulation.hpp"
 #include "sinew/simbody/forward_simulation.hpp"
 #include "support/test_models.hpp"
+#include "support/trajectory_recording.hpp"
 
 namespace sinew {
 namespace {
-
-struct Trajectory {
-    std::vector<SimulationFrame> frames;
-    SimulationSummary summary;
-};
-
-template <class Engine>
-Trajectory record(Engine engine, const Model& model, const ForwardSimulationOptions& options) {
-    Trajectory trajectory;
-    trajectory.summary = engine(model, options, [&](const SimulationFrame& frame) { trajectory.frames.push_back(frame); });
-    return trajectory;
-}
 
 struct Difference {
     double q = 0, u = 0;  // max abs difference over all frames and coordinates (q: rad, m, quaternion components)

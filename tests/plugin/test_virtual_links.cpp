@@ -24,6 +24,7 @@
 #include "sinew/simbody/simbody_model.hpp"
 #include "support/forked_model.hpp"
 #include "support/test_models.hpp"
+#include "support/trajectory_recording.hpp"
 
 namespace sinew {
 namespace {
@@ -141,18 +142,6 @@ TEST(VirtualLinks, UdotMatchesSimbodyOnTautForks) {
     }
     std::printf("udot, sinew vs Simbody, %d chains with 3 taut forks (with and without a loop): worst relative "
                 "difference %.2e\n", count, worst);
-}
-
-struct Trajectory {
-    std::vector<SimulationFrame> frames;
-    SimulationSummary summary;
-};
-
-template <class Engine>
-Trajectory record(Engine engine, const Model& model, const ForwardSimulationOptions& options) {
-    Trajectory trajectory;
-    trajectory.summary = engine(model, options, [&](const SimulationFrame& frame) { trajectory.frames.push_back(frame); });
-    return trajectory;
 }
 
 // A chain of 4 links hanging from a weld with two forks of soft springs pulling it sideways: it swings by

@@ -26,9 +26,13 @@ struct StorageTable {
 // Throws sinew::Error for a table that could not be read back: rows of the wrong length, a non-finite
 // value, a label or header line that would break the layout.
 void writeStorageFile(const StorageTable& table, const std::string& path);
-// Throws sinew::Error naming the file, line (and column, for a cell) of a malformed header or row; NaN,
-// infinite and non-numeric cells are refused.
-StorageTable readStorageFile(const std::string& path);
+enum class NonFinite { Refuse, Allow };
+
+// Throws sinew::Error naming the file, line (and column, for a cell) of a malformed header or row;
+// non-numeric cells are refused. NaN and infinite cells are refused by default; with NonFinite::Allow
+// (for motions with gaps, which the caller then skips) they are read as they are, and in a tab-separated
+// row an empty cell, or a cell missing at the end of the row, reads as NaN. Times must be finite either way.
+StorageTable readStorageFile(const std::string& path, NonFinite nonFinite = NonFinite::Refuse);
 
 enum class ExtraColumns { Allow, Refuse };
 

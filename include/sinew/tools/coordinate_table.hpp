@@ -3,6 +3,7 @@
 // matched by name, rotational coordinates of an inDegrees table converted to radians.
 #include <Eigen/Core>
 
+#include "sinew/core/coordinate_preprocessing.hpp"
 #include "sinew/core/model.hpp"
 #include "sinew/io/storage_file.hpp"
 
@@ -17,5 +18,10 @@ struct CoordinateSamples {
 // be exactly the model's coordinates, else a sinew::Error at the table's file:line lists what is missing
 // or extra.
 CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& table);
+
+// q, q̇, q̈ from the samples as OpenSim's tools derive them (coordinate_preprocessing.hpp): cutoff in Hz
+// (negative: no filtering), the time range in s; errors name the model's coordinates.
+CoordinateTrajectory preprocessCoordinateSamples(const Model& model, const CoordinateSamples& samples,
+                                                 double lowpassCutoffHz, double startTime, double finalTime);
 
 }  // namespace sinew

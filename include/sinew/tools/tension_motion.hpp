@@ -2,7 +2,9 @@
 // Wire tensions over a whole motion (docs/tensions-from-motion.md): a coordinates table processed as
 // OpenSim's tools process it (coordinate_preprocessing.hpp), measured external loads, then
 // TensionAnalysis::calcFrame per frame. Every frame is kept: an infeasible or failed one is flagged in the
-// report with its residuals, never dropped.
+// report with its residuals, never dropped. A motion row with a non-finite coordinate (read with
+// NonFinite::Allow) is left out of the splines and still gets its row in every output table, at its own
+// time, flagged kMissingInputStatus with zero tensions (outputs never hold NaN).
 #include <functional>
 #include <limits>
 
@@ -12,6 +14,9 @@
 #include "sinew/tools/tension_analysis.hpp"
 
 namespace sinew {
+
+// Report status of a frame whose motion row had a non-finite coordinate; 0-2 are DistributionStatus.
+constexpr int kMissingInputStatus = 3;
 
 struct TensionMotionOptions {
     TensionAnalysisOptions analysis;
@@ -29,15 +34,19 @@ struct TensionMotionResult {
     StorageTable tensions;     // N, one column per wire (its name)
     StorageTable activations;  // static optimization: one column per wire; empty otherwise
     StorageTable reserves;     // static optimization with reserves: N m or N, one column per reserve
-    // Per frame: status (0 optimal, 1 infeasible, 2 failed), Z (N² m²), active_wires, iterations,
+    // Per frame: status (0 optimal, 1 infeasible, 2 failed, 3 missing input), Z (N² m²), active_wires, iterations,
     // unactuated_residual (|tau| on DOFs no wire reaches), then <coordinate>_residual and
     // <coordinate>_reserve per DOF (see TensionFrame).
     StorageTable report;
-    int flaggedFrames = 0;  // frames whose status is not optimal
+    int flaggedFrames = 0;  // frames whose status is not optimal: the three counts below together
+    int infeasibleFrames = 0, failedFrames = 0;
+    // Indices into motion.rows of the rows in the time range whose coordinates were not all finite.
+    std::vector<int> missingRows;
 };
 
 // The model's coordinates must all be scalar and the table's columns exactly the model's coordinates
-// (readCoordinateSamples says what is missing or extra).
+// (readCoordinateSamples says what is missing or extra). Throws sinew::Error when the finite rows left
+// are too few for the splines.
 TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& motion, const ExternalLoads* loads,
                                        const TensionMotionOptions& options);
 
