@@ -65,6 +65,8 @@ public:
     void calcStateDerivative(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
         calcKinematicsAndTensions(t, y);
         calcWireLinkForces(model_, data_, tensions_);
+        tau_.setZero();
+        addWirePointMotionForces(model_, data_, tensions_, tau_);  // moving points push on their coordinates
         calcForwardDynamics(model_, schedule_, data_, tau_, data_.F_G, fd_);
         for (int i = 0; i < model_.getNumLinks(); ++i) {
             const Joint& joint = model_.getJoint(i);
@@ -257,7 +259,7 @@ private:
     ForwardDynamicsData fd_;
     VirtualLinkEquilibriumData equilibrium_;
     Eigen::VectorXd q_, u_;       // the state being evaluated, split (nq, nu)
-    Eigen::VectorXd tau_;         // zero generalized forces (nu)
+    Eigen::VectorXd tau_;         // generalized forces of moving wire points, else zero (nu)
     Eigen::VectorXd tensions_;    // N (numWires)
     Eigen::VectorXd k_[7];        // Runge-Kutta stages (nq + nu each)
     Eigen::VectorXd yStage_, yNew_, error_;  // (nq + nu)

@@ -117,6 +117,9 @@ SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
                 wireForces_.emplace_back();
                 continue;
             }
+            if (!wire.isPolyline())
+                throw Error("wire '" + wire.name + "' has conditional or moving points or wraps, which the Simbody "
+                            "plugin's wire element does not model yet (docs/wire-paths.md); use sinew's engine");
             std::vector<WireForce::Station> path;
             for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
                 const WirePoint& point = model_.getWirePoints()[static_cast<std::size_t>(k)];
