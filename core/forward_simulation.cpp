@@ -367,7 +367,8 @@ SimulationSummary simulateForwardSinew(const Model& model, const ForwardSimulati
             std::max(summary.maxConstraintViolation, calcConstraintViolation(model, data, frame.q, hangLink, p_GH));
         simulator.calcKinematicsAndTensions(t, y);
         frame.tensions = simulator.getTensions();
-        summary.maxVirtualLinkResidual = std::max(summary.maxVirtualLinkResidual, simulator.getVirtualLinkStatus().residual);
+        summary.maxVirtualLinkResidual =
+            recordVirtualLinkResidual(summary.maxVirtualLinkResidual, simulator.getVirtualLinkStatus(), t);
         // T = sum over links of 1/2 (m |v_com|^2 + w^T I_com w); V = -m g . p_com + wire energy.
         double kinetic = 0, potential = calcWirePotentialEnergy(model, data);
         for (int i = 0; i < model.getNumLinks(); ++i) {

@@ -12,6 +12,7 @@
 
 #include "sinew/core/error.hpp"
 #include "sinew/core/force_law_registry.hpp"
+#include "sinew/core/spatial.hpp"
 
 namespace sinew {
 namespace {
@@ -129,14 +130,6 @@ MotionType calcMotionType(const std::vector<TransformAxis>& axes, int coordinate
     return type;
 }
 
-// OpenSim's xyz_body_rotation: R = Rx(a) Ry(b) Rz(c), a body-fixed X-Y-Z sequence (Simbody's
-// Rotation::setRotationToBodyFixedXYZ).
-Eigen::Matrix3d rotationFromBodyFixedXYZ(const Eigen::Vector3d& angles) {
-    return (Eigen::AngleAxisd(angles[0], Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(angles[1], Eigen::Vector3d::UnitY()) *
-            Eigen::AngleAxisd(angles[2], Eigen::Vector3d::UnitZ()))
-        .toRotationMatrix();
-}
-
 WrapObject buildWrapObject(const WrapObjectSpec& os, int link) {
     const std::string label = "wrap object '" + os.name + "'";
     WrapObject object;
@@ -146,7 +139,7 @@ WrapObject buildWrapObject(const WrapObjectSpec& os, int link) {
     requireFinite(os.where, label + ": rotation", os.xyzBodyRotation);
     requireFinite(os.where, label + ": translation", os.translation);
     object.xyzBodyRotation = os.xyzBodyRotation;
-    object.R_BW = rotationFromBodyFixedXYZ(os.xyzBodyRotation);
+    object.R_BW = calcRotationFromBodyFixedXYZ(os.xyzBodyRotation);
     object.p_BW = os.translation;
     switch (os.shape) {
         case WrapShape::Sphere:

@@ -86,7 +86,7 @@ bool measureStatus(const Model& model, const Data& data, VirtualLinkEquilibriumD
     for (int s = 0; s < static_cast<int>(eq.links.size()); ++s) {
         double residual = 0, load = 0;
         measureResidual(model, data, eq, s, residual, load);
-        status.residual = std::max(status.residual, residual);
+        if (!(residual <= status.residual)) status.residual = residual;  // a NaN residual stays visible
         status.forceScale = std::max(status.forceScale, load);
         if (load == 0) ++status.slackLinks;
         within = within && residual <= kResidualTolerance * load;
@@ -331,6 +331,13 @@ void getVirtualLinkCoordinates(const Model& model, const Data& data, const Virtu
         u.segment<3>(joint.uStart) = data.w_GB[b];
         u.segment<3>(joint.uStart + 3) = data.v_GB[b];
     }
+}
+
+double recordVirtualLinkResidual(double worst, const VirtualLinkEquilibriumStatus& status, double time) {
+    if (!std::isfinite(status.residual))
+        throw Error("virtual-link equilibrium broke down at t = " + std::to_string(time) + " s (residual " +
+                    std::to_string(status.residual) + " N after " + std::to_string(status.iterations) + " iterations)");
+    return std::max(worst, status.residual);
 }
 
 }  // namespace sinew

@@ -15,7 +15,7 @@ using PathPoint = Data::WirePathPoint;
 // OpenSim's ConditionalPathPoint::isActive, with its 1e-5 widening of the range.
 bool isPointActive(const Wire& wire, int point, const Eigen::VectorXd& q) {
     for (const WirePointCondition& c : wire.conditions)
-        if (c.point == point) return q[c.q] >= c.min - 1e-5 && q[c.q] <= c.max + 1e-5;
+        if (c.point == point) return !(q[c.q] < c.min - 1e-5 || q[c.q] > c.max + 1e-5);  // NaN q stays on the path
     return true;
 }
 

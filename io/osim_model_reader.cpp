@@ -11,13 +11,6 @@
 
 namespace sinew {
 
-Eigen::Matrix3d calcRotationFromBodyFixedXYZ(const Eigen::Vector3d& angles) {
-    return (Eigen::AngleAxisd(angles[0], Eigen::Vector3d::UnitX()) *
-            Eigen::AngleAxisd(angles[1], Eigen::Vector3d::UnitY()) *
-            Eigen::AngleAxisd(angles[2], Eigen::Vector3d::UnitZ()))
-        .toRotationMatrix();
-}
-
 const char* toString(OsimJointType type) {
     switch (type) {
         case OsimJointType::Custom: return "CustomJoint";

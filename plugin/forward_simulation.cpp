@@ -56,7 +56,8 @@ SimulationSummary simulateForward(const Model& model, const ForwardSimulationOpt
         simbody.calcCoordinates(s, frame.q, frame.u);
         frame.tensions = simbody.calcWireTensions(s);
         if (const VirtualLinkWireForce* forks = simbody.getVirtualLinkWireForce())
-            summary.maxVirtualLinkResidual = std::max(summary.maxVirtualLinkResidual, forks->getEquilibrium().status.residual);
+            summary.maxVirtualLinkResidual =
+                recordVirtualLinkResidual(summary.maxVirtualLinkResidual, forks->getEquilibrium().status, frame.time);
         summary.maxConstraintViolation = std::max(summary.maxConstraintViolation,
                                                   calcConstraintViolation(model, kinematics, frame.q, hangLink, p_GH));
         frame.kineticEnergy = system.calcKineticEnergy(s);

@@ -8,15 +8,13 @@ namespace sinew {
 namespace {
 
 ReserveActuator makeReserve(const Model& model, const OsimCoordinateActuator& actuator) {
-    const std::vector<Coordinate>& coordinates = model.getCoordinates();
-    const auto it = std::find_if(coordinates.begin(), coordinates.end(),
-                                 [&](const Coordinate& c) { return c.name == actuator.coordinate; });
-    if (it == coordinates.end())
+    const int dof = model.findCoordinateIndex(actuator.coordinate);  // scalar coordinates: q index = u index
+    if (dof == Model::kNotFound)
         throw ModelError(actuator.where, "CoordinateActuator '" + actuator.name + "' acts on coordinate '" +
                                              actuator.coordinate + "', which model '" + model.getName() + "' lacks");
     ReserveActuator reserve;
     reserve.name = actuator.name;
-    reserve.dof = static_cast<int>(it - coordinates.begin());  // scalar coordinates: q index = u index
+    reserve.dof = dof;
     reserve.optimalForce = actuator.limits.optimalForce;
     reserve.minControl = actuator.limits.minControl;
     reserve.maxControl = actuator.limits.maxControl;

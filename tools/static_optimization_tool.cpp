@@ -56,7 +56,14 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
     if (!analysis.useModelForceSet)
         throw ModelError(analysis.where, "use_model_force_set false (ideal actuators on every DOF instead of the "
                                          "muscles) is not supported");
+    if (!analysis.on)
+        throw ModelError(analysis.where, "StaticOptimization '" + analysis.name + "' is switched off (<on>false</on>)");
+    if (analysis.activationExponent != 2)
+        throw ModelError(analysis.where, "activation_exponent " + std::to_string(analysis.activationExponent) +
+                                             " is not supported (the active-set QP minimizes squared activations)");
     if (analysis.stepInterval != 1) note("step_interval is ignored: every frame is reported");
+    note("results are written with 17 significant digits (output_precision " +
+         std::to_string(setup.outputPrecision) + " is not applied)");
     note("optimizer_convergence_criterion and optimizer_max_iterations do not apply: the active-set QP solves "
          "each frame to optimality");
 
@@ -81,9 +88,6 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
         options.minActivation[w] = muscle->limits.minControl;
         options.maxActivation[w] = muscle->limits.maxControl;
     }
-    if (analysis.activationExponent != 2)
-        throw ModelError(analysis.where, "activation_exponent " + std::to_string(analysis.activationExponent) +
-                                             " is not supported (the active-set QP minimizes squared activations)");
 
     std::optional<ExternalLoads> loads;
     if (!setup.externalLoadsFile.empty()) loads = readExternalLoads(setup.externalLoadsFile);

@@ -59,4 +59,12 @@ inline Matrix6d calcSpatialInertia(double mass, const Eigen::Vector3d& c, const 
     return I;
 }
 
+// OpenSim's orientation angles (PhysicalOffsetFrame orientation, WrapObject xyz_body_rotation): a body-fixed
+// X-Y-Z sequence, R = Rx(a) Ry(b) Rz(c) (Simbody's Rotation::setRotationToBodyFixedXYZ).
+inline Eigen::Matrix3d calcRotationFromBodyFixedXYZ(const Eigen::Vector3d& angles) {
+    return (Eigen::AngleAxisd(angles[0], Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(angles[1], Eigen::Vector3d::UnitY()) *
+            Eigen::AngleAxisd(angles[2], Eigen::Vector3d::UnitZ()))
+        .toRotationMatrix();
+}
+
 }  // namespace sinew

@@ -77,4 +77,8 @@ void calcVirtualLinkStiffness(const Model& model, const Data& data, VirtualLinkE
 void getVirtualLinkCoordinates(const Model& model, const Data& data, const VirtualLinkEquilibriumData& eq,
                                Eigen::Ref<Eigen::VectorXd> q, Eigen::Ref<Eigen::VectorXd> u);
 
+// For simulators: the larger of `worst` and the status's residual (N); throws sinew::Error naming the time
+// when the equilibrium broke down (a non-finite residual), which no later frame could repair.
+double recordVirtualLinkResidual(double worst, const VirtualLinkEquilibriumStatus& status, double time);
+
 }  // namespace sinew

@@ -12,13 +12,12 @@
 #include <vector>
 
 #include "sinew/io/osim_actuator.hpp"
+#include "sinew/core/spatial.hpp"
 #include "sinew/io/osim_function.hpp"
 
 namespace sinew {
 
-// OpenSim's orientation convention (PhysicalOffsetFrame orientation, WrapObject xyz_body_rotation):
-// body-fixed X-Y-Z Euler angles, R = Rx(angles[0]) Ry(angles[1]) Rz(angles[2]).
-Eigen::Matrix3d calcRotationFromBodyFixedXYZ(const Eigen::Vector3d& angles);
+// Orientations are OpenSim's body-fixed X-Y-Z angles: calcRotationFromBodyFixedXYZ (sinew/core/spatial.hpp).
 
 // A frame, resolved to the body (or ground) it is fixed on: a point p_F in the frame is p_BF + R_BF p_F in
 // the body.
