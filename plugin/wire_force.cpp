@@ -93,6 +93,18 @@ VirtualLinkWireForce::VirtualLinkWireForce(const SimTK::SimbodyMatterSubsystem& 
 }
 
 const VirtualLinkEquilibriumStatus& VirtualLinkWireForce::solve(const SimTK::State& state) const {
+    const auto same = [](const SimTK::Vector& a, const SimTK::Vector& b) {
+        if (a.size() != b.size()) return false;
+        for (int i = 0; i < a.size(); ++i)
+            if (a[i] != b[i]) return false;
+        return true;
+    };
+    if (solved_ && state.getTime() == solvedTime_ && same(state.getQ(), solvedQ_) && same(state.getU(), solvedU_))
+        return equilibrium_.status;
+    solved_ = true;
+    solvedTime_ = state.getTime();
+    solvedQ_ = state.getQ();
+    solvedU_ = state.getU();
     const std::vector<WirePoint>& points = model_.getWirePoints();
     for (int w : equilibrium_.wires) {
         const Wire& wire = model_.getWire(w);

@@ -73,6 +73,8 @@ std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std:
         if (!musclesOut && model.getNumWires() > 0)
             notes("forces_to_exclude does not name Muscles, but sinew's inverse dynamics always leaves the wires out");
     }
+    if (notes && setup.coordinatesInDegrees)
+        notes("coordinates_in_degrees (OpenSim 3) is ignored: the motion file's inDegrees header decides, as in OpenSim 4");
     std::optional<ExternalLoads> loads;
     if (!setup.externalLoadsFile.empty()) {
         loads = readExternalLoads(setup.externalLoadsFile);

@@ -62,7 +62,8 @@ public:
 
     // Solves the equilibrium at the state (realized to Velocity). The solution stays in getData() (poses and
     // twists of the virtual links, the wires' paths) and getEquilibrium() (tensions, status) until the next
-    // solve.
+    // solve. A state with the time, q and u of the last solve reuses it: the force, the tensions and the
+    // energy of one state then come from one solve, not from warm starts moved by each other's calls.
     const VirtualLinkEquilibriumStatus& solve(const SimTK::State& state) const;
     const Data& getData() const { return data_; }
     const VirtualLinkEquilibriumData& getEquilibrium() const { return equilibrium_; }
@@ -77,6 +78,9 @@ private:
     std::vector<SimTK::MobilizedBodyIndex> bodies_;
     mutable Data data_;
     mutable VirtualLinkEquilibriumData equilibrium_;
+    mutable bool solved_ = false;
+    mutable double solvedTime_ = 0;
+    mutable SimTK::Vector solvedQ_, solvedU_;
 };
 
 }  // namespace sinew
