@@ -19,7 +19,9 @@ const char* kUsage =
     "  ID tool), the wire Jacobian, then the LP (least total tension), the QP (least squares) or OpenSim's\n"
     "  static optimization (least squared activations). DOFs no wire reaches (a floating root) keep their\n"
     "  generalized force as residual. Writes TENSIONS.sto, TENSIONS_report.sto (per frame: status 0 optimal,\n"
-    "  1 infeasible, 2 failed; Z; active wires; residuals and phase-1 reserves per DOF) and, for so,\n"
+    "  1 infeasible, 2 failed; Z; active wires; ipopt 1 where the Ipopt fallback solved the frame;\n"
+    "  residuals and phase-1 reserves per DOF: the least extra generalized force an infeasible frame\n"
+    "  needs) and, for so,\n"
     "  TENSIONS_activations.sto. Infeasible and failed frames are kept and counted. Motion rows with NaN or\n"
     "  empty cells are left out of the splines and written with status 3 and zero tensions, their times\n"
     "  listed. MODEL: .osim or .yaml.\n"
@@ -88,6 +90,8 @@ int runTensions(const std::vector<std::string>& args) {
                     "(status 3); see status and residuals in %s\n",
                     result.flaggedFrames, result.tensions.times.size(), result.infeasibleFrames, result.failedFrames,
                     result.missingRows.size(), withSuffix(output, "_report").c_str());
+    if (result.ipoptFrames > 0)
+        std::printf("%d frames solved by Ipopt (report column ipopt = 1)\n", result.ipoptFrames);
     return 0;
 }
 

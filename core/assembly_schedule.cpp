@@ -5,6 +5,7 @@
 #include <numeric>
 #include <set>
 
+#include "sinew/core/coordinate_coupler.hpp"
 #include "sinew/core/error.hpp"
 
 namespace sinew {
@@ -36,6 +37,7 @@ AssemblyJoint::Motion motionOf(JointType type) {
 }  // namespace
 
 AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) : kind_(kind) {
+    requireNoCouplers(model, "sinew's forward dynamics");
     if (kind == Kind::Automatic) {
         AssemblySchedule serial(model, Kind::Serial, hangLink);
         AssemblySchedule balanced(model, Kind::Balanced, hangLink);

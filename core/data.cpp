@@ -1,5 +1,9 @@
 #include "sinew/core/data.hpp"
 
+#include <algorithm>
+
+#include "sinew/core/wire_path.hpp"
+
 namespace sinew {
 
 Data::Data(const Model& model) {
@@ -29,6 +33,21 @@ Data::Data(const Model& model) {
     }
     wirePath.resize(static_cast<std::size_t>(pathEntries));
     wirePathSize.assign(wirePathStart.size(), 0);
+    int gradientRows = 0, longestPath = 0;
+    for (int w = 0; w < model.getNumWires(); ++w) {
+        const bool numerical = isLengthDifferentiatedNumerically(model, w);
+        wireGradientRow.push_back(numerical ? gradientRows++ : -1);
+        const Wire& wire = model.getWire(w);
+        if (numerical) longestPath = std::max(longestPath, wire.numPoints + 2 * static_cast<int>(wire.wraps.size()));
+    }
+    wireLengthGradient = Eigen::MatrixXd::Zero(gradientRows, model.getNumU());
+    if (gradientRows > 0) {
+        displacedR_GB = R_GB;
+        displacedP_GB = p_GB;
+        displacedP_GP = p_GP;
+        displacedQ = q;
+        displacedPath.resize(static_cast<std::size_t>(longestPath));
+    }
     F_G.assign(links, SpatialVector::Zero());
 }
 

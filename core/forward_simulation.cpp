@@ -66,7 +66,7 @@ public:
         calcKinematicsAndTensions(t, y);
         calcWireLinkForces(model_, data_, tensions_);
         tau_.setZero();
-        addWirePointMotionForces(model_, data_, tensions_, tau_);  // moving points push on their coordinates
+        addWireCoordinateForces(model_, data_, tensions_, tau_);  // moving points and ellipsoid-wrapped wires
         calcForwardDynamics(model_, schedule_, data_, tau_, data_.F_G, fd_);
         for (int i = 0; i < model_.getNumLinks(); ++i) {
             const Joint& joint = model_.getJoint(i);

@@ -495,9 +495,32 @@ Model ModelBuilder::build() const {
         const Joint& joint = model.joints_[static_cast<std::size_t>(model.coordinates_[static_cast<std::size_t>(q)].joint)];
         if (joint.nq != joint.nu)
             throw ModelError(where, owner + ": coordinate '" + name + "' is part of " + toString(joint.type) + " joint '" +
-                                        joint.name + "'s quaternion; a wire point can follow a pin or custom coordinate only");
+                                        joint.name + "'s quaternion; only pin and custom coordinates (qdot = u) can be named here");
         return std::pair<int, int>(q, joint.uStart + (q - joint.qStart));
     };
+
+    // Couplers: distinct coordinates, each dependent on one coupler at most, no dependent one driving
+    // another coupler (moment arms and applyCoordinateCouplers take one step of the chain rule).
+    std::map<std::string, std::string> couplerWhere;
+    for (const CoordinateCouplerSpec& cs : couplers_) {
+        claimName(couplerWhere, "coupler", cs.name, cs.where);
+        const std::string label = "coupler '" + cs.name + "'";
+        if (!std::isfinite(cs.scaleFactor)) throw ModelError(cs.where, label + ": scale factor must be finite");
+        const auto [dq, du] = resolveCoordinate(cs.where, label + " dependent", cs.dependentCoordinate);
+        const auto [iq, iu] = resolveCoordinate(cs.where, label + " independent", cs.independentCoordinate);
+        if (dq == iq)
+            throw ModelError(cs.where, label + ": coordinate '" + cs.dependentCoordinate + "' cannot depend on itself");
+        for (const CoordinateCoupler& other : model.couplers_) {
+            const std::string clash = "coupler '" + other.name + "' (" + couplerWhere.at(other.name) + ")";
+            if (other.dependentQ == dq)
+                throw ModelError(cs.where, label + ": coordinate '" + cs.dependentCoordinate +
+                                               "' is already the dependent coordinate of " + clash);
+            if (other.dependentQ == iq || other.independentQ == dq)
+                throw ModelError(cs.where, label + " and " + clash + " form a chain (a dependent coordinate driving "
+                                               "another coupler); sinew's couplers take independent coordinates only");
+        }
+        model.couplers_.push_back({cs.name, dq, du, iq, iu, cs.function, cs.scaleFactor});
+    }
 
     std::map<std::string, std::string> wireWhere;
     for (const WireSpec& ws : wires_) {

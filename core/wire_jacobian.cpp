@@ -52,6 +52,11 @@ void calcWireJacobian(const Model& model, Data& data, Eigen::Ref<Eigen::MatrixXd
     J.setZero();
     for (int w = 0; w < model.getNumWires(); ++w) {
         const Wire& wire = model.getWire(w);
+        const int row = data.wireGradientRow[static_cast<std::size_t>(w)];
+        if (row >= 0) {
+            J.row(w) = data.wireLengthGradient.row(row);
+            continue;
+        }
         for (int link : wire.supportLinks) data.F_G[static_cast<std::size_t>(link)].setZero();
         // Row w is the generalized force of unit "forces" dL/dp applied at the points (virtual work).
         addWirePointForces(model, data, w, 1.0);
@@ -69,20 +74,26 @@ void calcWireJacobian(const Model& model, Data& data, Eigen::Ref<Eigen::MatrixXd
 
 void calcWireLinkForces(const Model& model, Data& data, const Eigen::VectorXd& tensions) {
     for (SpatialVector& F : data.F_G) F.setZero();
-    for (int w = 0; w < model.getNumWires(); ++w) addWirePointForces(model, data, w, -tensions[w]);
+    for (int w = 0; w < model.getNumWires(); ++w)
+        if (data.wireGradientRow[static_cast<std::size_t>(w)] < 0) addWirePointForces(model, data, w, -tensions[w]);
 }
 
-void addWirePointMotionForces(const Model& model, const Data& data, const Eigen::VectorXd& tensions,
-                              Eigen::Ref<Eigen::VectorXd> tau) {
-    for (int w = 0; w < model.getNumWires(); ++w)
-        forEachMotionTerm(model, data, w, [&](int u, double dLdu) { tau[u] -= tensions[w] * dLdu; });
+void addWireCoordinateForces(const Model& model, const Data& data, const Eigen::VectorXd& tensions,
+                             Eigen::Ref<Eigen::VectorXd> tau) {
+    for (int w = 0; w < model.getNumWires(); ++w) {
+        const int row = data.wireGradientRow[static_cast<std::size_t>(w)];
+        if (row >= 0)
+            tau -= tensions[w] * data.wireLengthGradient.row(row).transpose();
+        else
+            forEachMotionTerm(model, data, w, [&](int u, double dLdu) { tau[u] -= tensions[w] * dLdu; });
+    }
 }
 
 void calcWireGeneralizedForces(const Model& model, Data& data, const Eigen::VectorXd& tensions,
                                Eigen::Ref<Eigen::VectorXd> tau) {
     calcWireLinkForces(model, data, tensions);
     calcGeneralizedForcesFromLinkForces(model, data, tau);
-    addWirePointMotionForces(model, data, tensions, tau);
+    addWireCoordinateForces(model, data, tensions, tau);
 }
 
 }  // namespace sinew

@@ -1,10 +1,12 @@
 #include "sinew/core/wire_path.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "sinew/core/error.hpp"
+#include "sinew/core/kinematics.hpp"
 #include "sinew/core/wrap_object.hpp"
 
 namespace sinew {
@@ -67,12 +69,20 @@ private:
     int& size_;
 };
 
+// What a path is computed from: Data's link poses, wire points and coordinates, or displaced copies.
+struct PathInputs {
+    const std::vector<Eigen::Matrix3d>& R_GB;
+    const std::vector<Eigen::Vector3d>& p_GB;
+    const std::vector<Eigen::Vector3d>& p_GP;
+    const Eigen::VectorXd& q;
+};
+
 // OpenSim's GeometryPath::applyWrapObjects: each wrap in turn takes its tangent points out, tries every
 // segment in its range, and puts back the wrap a segment must take (it passes through the object) or,
 // failing that, the one that lengthens the path least. With several wraps, up to 8 rounds until the
 // length settles within 0.5 mm; a first round where the first wrap missed and the second found an end
 // inside its object is redone with those two swapped.
-void applyWraps(const Model& model, const Data& data, const Wire& wire, PathSlice path) {
+void applyWraps(const Model& model, const PathInputs& data, const Wire& wire, PathSlice path) {
     const int numWraps = static_cast<int>(wire.wraps.size());
     const int rounds = numWraps < 2 ? 1 : 8;
     bool swapped = false;
@@ -134,6 +144,16 @@ void applyWraps(const Model& model, const Data& data, const Wire& wire, PathSlic
     }
 }
 
+// The active points of a wire in order, with the wraps' tangent points.
+void buildGeneralWirePath(const Model& model, const PathInputs& inputs, const Wire& wire, PathSlice path) {
+    for (int k = 0; k < wire.numPoints; ++k)
+        if (isPointActive(wire, k, inputs.q)) {
+            const std::size_t kk = static_cast<std::size_t>(wire.firstPoint + k);
+            path.append(PathPoint{model.getWirePoints()[kk].link, k, -1, inputs.p_GP[kk], Eigen::Vector3d::Zero(), 0});
+        }
+    applyWraps(model, inputs, wire, path);
+}
+
 // The path of a wire with conditional or moving points or wraps (points already in Data::p_GP), its
 // length, and d(length)/d(p) of each of its points with tangent points held on their objects: by the
 // envelope theorem that is the whole derivative for shortest paths (docs/wire-paths.md).
@@ -142,12 +162,7 @@ void calcGeneralWirePath(const Model& model, Data& data, int w) {
     data.wirePathSize[static_cast<std::size_t>(w)] = 0;
     PathSlice path(data.wirePath.data() + data.wirePathStart[static_cast<std::size_t>(w)],
                    data.wirePathSize[static_cast<std::size_t>(w)]);
-    for (int k = 0; k < wire.numPoints; ++k)
-        if (isPointActive(wire, k, data.q)) {
-            const std::size_t kk = static_cast<std::size_t>(wire.firstPoint + k);
-            path.append(PathPoint{model.getWirePoints()[kk].link, k, -1, data.p_GP[kk], Eigen::Vector3d::Zero(), 0});
-        }
-    applyWraps(model, data, wire, path);
+    buildGeneralWirePath(model, PathInputs{data.R_GB, data.p_GB, data.p_GP, data.q}, wire, path);
     for (int i = 0; i < path.size(); ++i) path[i].dLdp_G.setZero();
     for (int i = 0; i + 1 < path.size(); ++i) {
         if (isSameWrap(path[i], path[i + 1])) continue;  // rigid on the object's link: no derivative
@@ -158,6 +173,109 @@ void calcGeneralWirePath(const Model& model, Data& data, int w) {
         path[i + 1].dLdp_G += segment / l;
     }
     data.wireLength[w] = calcPathLength(path.data(), path.size());
+}
+
+// Whether `link` moves with the joint of `jointLink` (is it or one of its descendants).
+bool movesWith(const Model& model, int link, int jointLink) {
+    for (int l = link; l != kGround; l = model.getJoint(l).parent)
+        if (l == jointLink) return true;
+    return false;
+}
+
+// One central difference along a mobility: the links that move with its joint (jointLink, or none for
+// kGround) displaced by the rigid motion of twist xi_G ([angular; linear at p_ref], per unit u) over a step
+// h, the coordinate q_index (or none for -1) moved by h, and the wire's points placed again.
+struct Displacement {
+    int jointLink = kGround;
+    SpatialVector xi_G = SpatialVector::Zero();
+    Eigen::Vector3d p_ref = Eigen::Vector3d::Zero();
+    int qIndex = -1;
+};
+
+// Sets the displaced copies of the poses of the wire's links and of its points back to Data's.
+void resetDisplacedCopies(const Model& model, Data& data, const Wire& wire) {
+    const std::vector<WirePoint>& points = model.getWirePoints();
+    auto reset = [&](int link) {
+        data.displacedR_GB[static_cast<std::size_t>(link)] = data.R_GB[static_cast<std::size_t>(link)];
+        data.displacedP_GB[static_cast<std::size_t>(link)] = data.p_GB[static_cast<std::size_t>(link)];
+    };
+    for (int k = 0; k < wire.numPoints; ++k) {
+        const std::size_t kk = static_cast<std::size_t>(wire.firstPoint + k);
+        reset(points[kk].link);
+        data.displacedP_GP[kk] = data.p_GP[kk];
+    }
+    for (const WireWrap& wrap : wire.wraps) reset(model.getWrapObjects()[static_cast<std::size_t>(wrap.object)].link);
+}
+
+// The wire's length after `displacement` over a step h; leaves the displaced copies as Data has them.
+double calcDisplacedLength(const Model& model, Data& data, const Wire& wire, const Displacement& displacement,
+                           double h) {
+    const std::vector<WirePoint>& points = model.getWirePoints();
+    const Eigen::Vector3d angle = h * displacement.xi_G.head<3>();
+    const Eigen::Matrix3d rotation =
+        angle.norm() > 0 ? Eigen::AngleAxisd(angle.norm(), angle.normalized()).toRotationMatrix() : Eigen::Matrix3d::Identity();
+    auto displace = [&](int link) {
+        const std::size_t b = static_cast<std::size_t>(link);
+        if (displacement.jointLink == kGround || !movesWith(model, link, displacement.jointLink)) return;
+        data.displacedR_GB[b] = rotation * data.R_GB[b];
+        data.displacedP_GB[b] = displacement.p_ref + rotation * (data.p_GB[b] - displacement.p_ref) + h * displacement.xi_G.tail<3>();
+    };
+    for (int k = 0; k < wire.numPoints; ++k) displace(points[static_cast<std::size_t>(wire.firstPoint + k)].link);
+    for (const WireWrap& wrap : wire.wraps) displace(model.getWrapObjects()[static_cast<std::size_t>(wrap.object)].link);
+    if (displacement.qIndex >= 0) data.displacedQ[displacement.qIndex] += h;
+    for (int k = 0; k < wire.numPoints; ++k) {
+        const std::size_t kk = static_cast<std::size_t>(wire.firstPoint + k), b = static_cast<std::size_t>(points[kk].link);
+        data.displacedP_GP[kk] = data.displacedP_GB[b] + data.displacedR_GB[b] * calcWirePointLocation(model, wire, k, data.displacedQ);
+    }
+    int size = 0;
+    buildGeneralWirePath(model, PathInputs{data.displacedR_GB, data.displacedP_GB, data.displacedP_GP, data.displacedQ}, wire,
+                         PathSlice(data.displacedPath.data(), size));
+    const double length = calcPathLength(data.displacedPath.data(), size);
+    resetDisplacedCopies(model, data, wire);
+    if (displacement.qIndex >= 0) data.displacedQ[displacement.qIndex] = data.q[displacement.qIndex];
+    return length;
+}
+
+// dL/du of wire w by central differences of its whole path, OpenSim's wrap rounds included: along each
+// mobility of the joints that move its points and objects, as the rigid motion of the joint's subtree (the
+// joint's twist from its motion subspace), with the coordinate itself moved for the wire's moving and
+// conditional points. A step of 1e-6 (rad or m) keeps truncation and roundoff near 1e-10 of the moment arm.
+void calcLengthGradientNumerically(const Model& model, Data& data, int w) {
+    constexpr double h = 1e-6;
+    const Wire& wire = model.getWire(w);
+    auto gradient = data.wireLengthGradient.row(data.wireGradientRow[static_cast<std::size_t>(w)]);
+    gradient.setZero();
+    resetDisplacedCopies(model, data, wire);
+    data.displacedQ = data.q;
+    // Where the path jumps within the step (OpenSim's ellipsoid heuristics can flip the wrap to the other
+    // side), the central difference would be the jump over 2h: the one-sided difference away from it is
+    // taken instead, the smaller one, as the two sides then differ by far more than h times the curvature.
+    const double length = data.wireLength[w];
+    auto difference = [&](const Displacement& d) {
+        const double forward = (calcDisplacedLength(model, data, wire, d, h) - length) / h;
+        const double backward = (length - calcDisplacedLength(model, data, wire, d, -h)) / h;
+        if (std::abs(forward - backward) > 1e-2) return std::abs(forward) < std::abs(backward) ? forward : backward;
+        return 0.5 * (forward + backward);
+    };
+    for (int link : wire.supportLinks) {
+        const Joint& joint = model.getJoint(link);
+        const std::size_t b = static_cast<std::size_t>(link);
+        // The joint's motion subspace in ground about its centre, column by column: H^T of unit forces.
+        Eigen::Matrix<double, 6, 6> H_G;
+        for (int k = 0; k < 6; ++k) {
+            double column[6];
+            projectOntoJoint(joint, data, link, data.p_GM[b], SpatialVector::Unit(k), column);
+            for (int c = 0; c < joint.nu; ++c) H_G(k, c) = column[c];
+        }
+        for (int c = 0; c < joint.nu; ++c) {
+            // Coordinates are rates of their own only where nq == nu (not quaternions).
+            const int qIndex = joint.nq == joint.nu ? joint.qStart + c : -1;
+            gradient[joint.uStart + c] = difference(Displacement{link, H_G.col(c), data.p_GM[b], qIndex});
+        }
+    }
+    // Coordinates that move a point in its link without moving the link.
+    for (const WirePointMotion& m : wire.motions)
+        if (gradient[m.u] == 0) gradient[m.u] = difference(Displacement{kGround, SpatialVector::Zero(), Eigen::Vector3d::Zero(), m.q});
 }
 
 }  // namespace
@@ -175,6 +293,13 @@ double calcWirePointMotionRate(const Model& model, const WirePointMotion& motion
     return motion.function.calcDerivative(value, 1);
 }
 
+bool isLengthDifferentiatedNumerically(const Model& model, int w) {
+    const Wire& wire = model.getWire(w);
+    return std::any_of(wire.wraps.begin(), wire.wraps.end(), [&](const WireWrap& wrap) {
+        return model.getWrapObjects()[static_cast<std::size_t>(wrap.object)].shape == WrapShape::Ellipsoid;
+    });
+}
+
 void calcWirePaths(const Model& model, Data& data) {
     const std::vector<WirePoint>& points = model.getWirePoints();
     for (std::size_t k = 0; k < points.size(); ++k) {
@@ -190,6 +315,7 @@ void calcWirePaths(const Model& model, Data& data) {
                 data.p_GP[k] = data.p_GB[b] + data.R_GB[b] * calcWirePointLocation(model, wire, m.point, data.q);
             }
             calcGeneralWirePath(model, data, w);
+            if (data.wireGradientRow[static_cast<std::size_t>(w)] >= 0) calcLengthGradientNumerically(model, data, w);
             continue;
         }
         const std::size_t first = static_cast<std::size_t>(wire.firstPoint);
@@ -223,6 +349,11 @@ void calcWireSpeeds(const Model& model, Data& data) {
             for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k)
                 speed += data.dLdp_GP[static_cast<std::size_t>(k)].dot(data.v_GP[static_cast<std::size_t>(k)]);
             data.wireSpeed[w] = speed;
+            continue;
+        }
+        const int row = data.wireGradientRow[static_cast<std::size_t>(w)];
+        if (row >= 0) {
+            data.wireSpeed[w] = data.wireLengthGradient.row(row).dot(data.u);
             continue;
         }
         // A moving point also moves in its link: R_GB dp_B/dq qdot, with qdot = u for its coordinate.

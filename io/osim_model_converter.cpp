@@ -215,6 +215,23 @@ void addMuscle(const OsimModel& osim, const OsimPathForce& muscle, ModelBuilder&
     builder.addWire(std::move(wire));
 }
 
+CoordinateCouplerSpec convertCoupler(const OsimCoordinateCoupler& coupler) {
+    // sinew's functions take one argument; OpenSim's of several (MultivariatePolynomialFunction) have no
+    // counterpart.
+    if (coupler.independentCoordinates.size() != 1)
+        throw ModelError(coupler.where, "CoordinateCouplerConstraint '" + coupler.name + "': " +
+                                            std::to_string(coupler.independentCoordinates.size()) +
+                                            " independent coordinates (sinew couples to exactly one)");
+    CoordinateCouplerSpec spec;
+    spec.name = coupler.name;
+    spec.dependentCoordinate = coupler.dependentCoordinate;
+    spec.independentCoordinate = coupler.independentCoordinates.front();
+    spec.function = convertOsimFunction(coupler.function);
+    spec.scaleFactor = coupler.scaleFactor;
+    spec.where = coupler.where;
+    return spec;
+}
+
 }  // namespace
 
 Function convertOsimFunction(const OsimFunction& f) {
@@ -267,9 +284,13 @@ OsimConversion convertOsimModel(const OsimModel& osim) {
         else
             addMuscle(osim, force, builder);
     }
-    for (const OsimCoordinateCoupler& coupler : osim.couplers)
-        notImported.push_back(describe("CoordinateCouplerConstraint", coupler.name, coupler.where) +
-                              ": coupled coordinates are not modelled yet (the dependent one is left free)");
+    for (const OsimCoordinateCoupler& coupler : osim.couplers) {
+        if (coupler.enforced)
+            builder.addCoupler(convertCoupler(coupler));
+        else
+            notImported.push_back(describe("CoordinateCouplerConstraint", coupler.name, coupler.where) +
+                                  ": disabled in the model (the dependent coordinate is free, as in OpenSim)");
+    }
     for (const OsimCoordinateActuator& a : osim.coordinateActuators)
         notImported.push_back(describe("CoordinateActuator", a.name, a.where) + ": actuators are not wires");
     for (const OsimPointActuator& a : osim.pointActuators)

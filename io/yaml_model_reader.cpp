@@ -21,8 +21,8 @@ public:
 
     Model read(const YAML::Node& root) {
         if (!root.IsMap()) fail(root, "a model file is a mapping with keys sinew_model, name, links, joints, ...");
-        requireKeys(root, "model", {"sinew_model", "name", "gravity", "links", "joints", "virtual_links", "loops", "wrap_objects",
-                                    "wires"});
+        requireKeys(root, "model", {"sinew_model", "name", "gravity", "links", "joints", "virtual_links", "loops", "couplers",
+                                    "wrap_objects", "wires"});
         const YAML::Node version = root["sinew_model"];
         if (!version) fail(root, "missing 'sinew_model: " + std::to_string(kModelFormatVersion) + "' (format version)");
         if (readInt(version, "sinew_model") != kModelFormatVersion)
@@ -34,6 +34,7 @@ public:
         for (const YAML::Node& node : sequence(root, "joints")) builder.addJoint(readJoint(node));
         for (const YAML::Node& node : sequence(root, "virtual_links")) builder.addVirtualLink(readVirtualLink(node));
         for (const YAML::Node& node : sequence(root, "loops")) builder.addLoop(readLoop(node));
+        for (const YAML::Node& node : sequence(root, "couplers")) builder.addCoupler(readCoupler(node));
         for (const YAML::Node& node : sequence(root, "wrap_objects")) builder.addWrapObject(readWrapObject(node));
         for (const YAML::Node& node : sequence(root, "wires")) builder.addWire(readWire(node));
         return builder.build();
@@ -273,6 +274,20 @@ private:
         loop.linkB = readString(field(node, "link_b", owner), "link_b");
         loop.p_B = readVector3(field(node, "point_b", owner), "point_b");
         return loop;
+    }
+
+    // OpenSim's CoordinateCouplerConstraint: dependent = scale_factor * function(independent).
+    CoordinateCouplerSpec readCoupler(const YAML::Node& node) const {
+        requireKeys(node, "coupler", {"name", "dependent", "independent", "function", "scale_factor"});
+        CoordinateCouplerSpec coupler;
+        coupler.where = where(node);
+        coupler.name = readString(field(node, "name", "coupler"), "name");
+        const std::string owner = "coupler '" + coupler.name + "'";
+        coupler.dependentCoordinate = readString(field(node, "dependent", owner), "dependent");
+        coupler.independentCoordinate = readString(field(node, "independent", owner), "independent");
+        coupler.function = readFunction(field(node, "function", owner), owner);
+        if (node["scale_factor"]) coupler.scaleFactor = readNumber(node["scale_factor"], "scale_factor");
+        return coupler;
     }
 
     // {link, at} plus, for OpenSim's path points, active_when: {coordinate, range} and moving: {x|y|z:

@@ -215,6 +215,21 @@ std::string writeModelText(const Model& model) {
     }
     out << YAML::EndSeq;
 
+    if (model.getNumCouplers() > 0) {
+        const std::vector<std::string> coordinates = getCoordinateNames(model);
+        out << YAML::Key << "couplers" << YAML::Value << YAML::BeginSeq;
+        for (const CoordinateCoupler& c : model.getCouplers()) {
+            out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << c.name << YAML::Key
+                << "dependent" << YAML::Value << coordinates[static_cast<std::size_t>(c.dependentQ)] << YAML::Key
+                << "independent" << YAML::Value << coordinates[static_cast<std::size_t>(c.independentQ)] << YAML::Key
+                << "function" << YAML::Value;
+            emitFunction(out, c.function);
+            if (c.scaleFactor != 1) out << YAML::Key << "scale_factor" << YAML::Value << c.scaleFactor;
+            out << YAML::EndMap;
+        }
+        out << YAML::EndSeq;
+    }
+
     out << YAML::Key << "wrap_objects" << YAML::Value << YAML::BeginSeq;
     for (const WrapObject& object : model.getWrapObjects()) emitWrapObject(out, model, object);
     out << YAML::EndSeq;

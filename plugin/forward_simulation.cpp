@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "sinew/core/coordinate_coupler.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/forward_simulation.hpp"
 #include "sinew/core/kinematics.hpp"
@@ -15,6 +16,7 @@ SimulationSummary simulateForward(const Model& model, const ForwardSimulationOpt
                                   const std::function<void(const SimulationFrame&)>& onFrame) {
     if (!(options.duration > 0) || !(options.reportInterval > 0) || !(options.accuracy > 0))
         throw Error("simulation needs duration, report interval and accuracy > 0");
+    requireNoCouplers(model, "the Simbody forward simulation");
 
     SimbodyModelOptions systemOptions;
     systemOptions.hangBy = options.hangBy;

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sinew/tensions/infeasible_frame.hpp"
+
 namespace sinew {
 namespace {
 
@@ -38,9 +40,29 @@ ActiveSetSolver::ActiveSetSolver(ActiveSetOptions options) : options_(options) {
 void ActiveSetSolver::setUpFrame(const DistributionProblem& problem) {
     validateDistributionProblem(problem);
     const int rows = problem.getNumRows(), numBounded = problem.getNumBounded();
+    // The free columns reach few rows (a loop's: the joints from its two links to the root; 36 of 198 on the
+    // whole-body model), so Q, and the reduction by it, acts on those rows alone: they go first in rowOrder_.
     rank_ = 0;
-    if (problem.numFree > 0) {
-        G_ = problem.A.rightCols(problem.numFree);
+    numSupportRows_ = 0;
+    rowOrder_.clear();
+    rowPosition_.assign(static_cast<std::size_t>(rows), -1);
+    for (int j = numBounded; j < problem.getNumVariables(); ++j)
+        for (SparseColumn it(problem.A, j); it; ++it)
+            if (it.value() != 0 && rowPosition_[static_cast<std::size_t>(it.row())] < 0) {
+                rowPosition_[static_cast<std::size_t>(it.row())] = numSupportRows_++;
+                rowOrder_.push_back(static_cast<int>(it.row()));
+            }
+    for (int i = 0; i < rows; ++i)
+        if (rowPosition_[static_cast<std::size_t>(i)] < 0) {
+            rowPosition_[static_cast<std::size_t>(i)] = static_cast<int>(rowOrder_.size());
+            rowOrder_.push_back(i);
+        }
+    supportWork_.resize(numSupportRows_);
+    if (numSupportRows_ > 0) {
+        G_.setZero(numSupportRows_, problem.numFree);
+        for (int j = numBounded; j < problem.getNumVariables(); ++j)
+            for (SparseColumn it(problem.A, j); it; ++it)
+                if (it.value() != 0) G_(rowPosition_[static_cast<std::size_t>(it.row())], j - numBounded) = it.value();
         qr_.setThreshold(1e-10);
         qr_.compute(G_);
         rank_ = static_cast<int>(qr_.rank());
@@ -77,14 +99,18 @@ void ActiveSetSolver::setUpFrame(const DistributionProblem& problem) {
     }
 }
 
+// Reduced coordinates (rank_ > 0): Q^T's last numSupportRows_ - rank_ components on the support rows, then
+// the other rows in rowOrder_.
 void ActiveSetSolver::toReduced(const Eigen::VectorXd& rowVector, Eigen::VectorXd& reduced) {
     if (rank_ == 0) {
         reduced = rowVector;
         return;
     }
-    rowWork_ = rowVector;
-    rowWork_.applyOnTheLeft(qr_.householderQ().adjoint());
-    reduced = rowWork_.tail(reduced.size());
+    const Eigen::Index support = numSupportRows_, kept = support - rank_;
+    for (Eigen::Index k = 0; k < support; ++k) supportWork_[k] = rowVector[rowOrder_[static_cast<std::size_t>(k)]];
+    supportWork_.applyOnTheLeft(qr_.householderQ().adjoint());
+    reduced.head(kept) = supportWork_.tail(kept);
+    for (Eigen::Index k = support; k < rowVector.size(); ++k) reduced[k - rank_] = rowVector[rowOrder_[static_cast<std::size_t>(k)]];
 }
 
 void ActiveSetSolver::fromReduced(const Eigen::VectorXd& reduced, Eigen::VectorXd& rowVector) {
@@ -92,9 +118,12 @@ void ActiveSetSolver::fromReduced(const Eigen::VectorXd& reduced, Eigen::VectorX
         rowVector = reduced;
         return;
     }
-    rowVector.head(rank_).setZero();
-    rowVector.tail(reduced.size()) = reduced;
-    rowVector.applyOnTheLeft(qr_.householderQ());
+    const Eigen::Index support = numSupportRows_, kept = support - rank_;
+    supportWork_.head(rank_).setZero();
+    supportWork_.tail(kept) = reduced.head(kept);
+    supportWork_.applyOnTheLeft(qr_.householderQ());
+    for (Eigen::Index k = 0; k < support; ++k) rowVector[rowOrder_[static_cast<std::size_t>(k)]] = supportWork_[k];
+    for (Eigen::Index k = support; k < rowVector.size(); ++k) rowVector[rowOrder_[static_cast<std::size_t>(k)]] = reduced[k - rank_];
 }
 
 // x(y) = clamp(a_j^T y / weight_j) and the dual gradient tau - Sigma y - A_bounded x (docs/tensions.md, eq. QP-2).
@@ -114,16 +143,24 @@ void ActiveSetSolver::evaluate(const DistributionProblem& problem) {
 // The Newton matrix Z^T (Sigma + sum over free j of a_j a_j^T / weight_j) Z from scratch, and its Cholesky factor.
 bool ActiveSetSolver::factorize(const DistributionProblem& problem) {
     const int rows = problem.getNumRows();
+    // Rows in rowOrder_ when reducing (support rows first), so that Q acts on K's leading rows and columns.
+    const bool reduce = rank_ > 0;
+    const auto at = [&](Eigen::Index row) -> Eigen::Index { return reduce ? rowPosition_[static_cast<std::size_t>(row)] : row; };
     K_.setZero(rows, rows);
-    K_.diagonal() = sigma_;
+    for (int i = 0; i < rows; ++i) K_(at(i), at(i)) = sigma_[i];
+    // A's pattern holds every row a variable may reach; at a given pose most of a wire's are explicit zeros
+    // (on the whole-body model 2 of 3), skipped here.
     for (int j = 0; j < problem.getNumBounded(); ++j) {
         if (regime_[static_cast<std::size_t>(j)] != Free) continue;
-        for (SparseColumn p(problem.A, j); p; ++p)
-            for (SparseColumn q(problem.A, j); q; ++q) K_(p.row(), q.row()) += p.value() * q.value() / problem.weight[j];
+        for (SparseColumn p(problem.A, j); p; ++p) {
+            if (p.value() == 0) continue;
+            const double scaled = p.value() / problem.weight[j];
+            for (SparseColumn q(problem.A, j); q; ++q) K_(at(p.row()), at(q.row())) += scaled * q.value();
+        }
     }
-    if (rank_ > 0) {
-        K_.applyOnTheLeft(qr_.householderQ().adjoint());
-        K_.applyOnTheRight(qr_.householderQ());
+    if (reduce) {
+        K_.topRows(numSupportRows_).applyOnTheLeft(qr_.householderQ().adjoint());
+        K_.leftCols(numSupportRows_).applyOnTheRight(qr_.householderQ());
     }
     const Eigen::Index reduced = rows - rank_;
     L_ = K_.bottomRightCorner(reduced, reduced);
@@ -195,6 +232,46 @@ double ActiveSetSolver::searchLine(const DistributionProblem& problem) {
 }
 
 void ActiveSetSolver::solve(const DistributionProblem& problem, DistributionResult& result) {
+    // An infeasible frame's dual grows without bound (up to the equality regulariser) and its Newton steps
+    // would run to the cap: a frame still unsolved after kStallIterations steps, a few times what a
+    // feasible frame takes cold, is checked for feasibility first.
+    const int firstSteps = std::min(options_.maxIterations, kStallIterations);
+    solveDual(problem, result, firstSteps);
+    if (result.status == DistributionStatus::Optimal) return;
+    // Stalled, or an equality row left unmet: the phase-1 LP tells an infeasible frame from a failure.
+    const DistributionSolve solveLeastSquares = [this](const DistributionProblem& relaxed, DistributionResult& answer) {
+        hasWarmStart_ = false;  // the stalled multipliers are no start
+        solveDual(relaxed, answer);
+    };
+    if (reportInfeasibleFrame(problem, 2.0, options_.infeasibilityTolerance, solveLeastSquares, result)) return;
+    if (result.status == DistributionStatus::Failed && result.iterations == firstSteps &&
+        firstSteps < options_.maxIterations) {  // feasible and slow: on from where the steps stopped
+        hasWarmStart_ = true;
+        solveDual(problem, result, options_.maxIterations - firstSteps);
+        result.iterations += firstSteps;
+        if (result.status == DistributionStatus::Optimal) return;
+    }
+    if (!options_.ipoptFallback) return;
+    if (!ipopt_) ipopt_ = std::make_unique<IpoptSolver>();
+    const int iterations = result.iterations;
+    ipopt_->solve(problem, 2.0, result);
+    result.iterations += iterations;
+    if (result.status != DistributionStatus::Optimal) return;
+    // An interior point stops near the bounds, not on them: a few dual Newton steps from Ipopt's multipliers
+    // find the exact face (the QP's KKT to roundoff). Kept only when they converge.
+    y_ = result.multipliers;
+    hasWarmStart_ = true;
+    solveDual(problem, polished_, kPolishIterations);
+    if (polished_.status != DistributionStatus::Optimal) return;
+    polished_.iterations += result.iterations;
+    polished_.usedIpopt = true;
+    std::swap(result, polished_);
+}
+
+// The dual Newton active set alone, within maxIterations (default: the options'): Optimal, Infeasible
+// (converged with an equality row unmet; its residual as reserve) or Failed.
+void ActiveSetSolver::solveDual(const DistributionProblem& problem, DistributionResult& result, int maxIterations) {
+    if (maxIterations < 0) maxIterations = options_.maxIterations;
     setUpFrame(problem);
     const int numBounded = problem.getNumBounded();
     const double tauScale = problem.target.size() ? problem.target.cwiseAbs().maxCoeff() : 0.0;
@@ -212,7 +289,7 @@ void ActiveSetSolver::solve(const DistributionProblem& problem, DistributionResu
             converged = true;
             break;
         }
-        if (iterations >= options_.maxIterations) break;
+        if (iterations >= maxIterations) break;
         if (!factorValid || !updateFactor(problem))
             if (!factorize(problem)) break;
         factorValid = true;
@@ -234,9 +311,16 @@ void ActiveSetSolver::solve(const DistributionProblem& problem, DistributionResu
     result.x.resize(problem.getNumVariables());
     result.x.head(numBounded) = x_;
     // Free variables: at the optimum the gradient lies in range(G), and G lambda takes it up.
-    if (problem.numFree > 0) result.x.tail(problem.numFree) = qr_.solve(gradient_);
+    if (problem.numFree > 0) {
+        result.x.tail(problem.numFree).setZero();  // no support rows: the free columns are zero
+        if (numSupportRows_ > 0) {
+            for (int k = 0; k < numSupportRows_; ++k) supportWork_[k] = gradient_[rowOrder_[static_cast<std::size_t>(k)]];
+            result.x.tail(problem.numFree) = qr_.solve(supportWork_);
+        }
+    }
     result.multipliers = y_;
     result.iterations = iterations;
+    result.usedIpopt = false;
     calcResultSummary(problem, result);
     result.objective = 0.5 * problem.weight.dot(x_.cwiseProduct(x_));
     double equalityResidual = 0;

@@ -41,6 +41,29 @@ void clampToBounds(const DistributionProblem& problem, Eigen::VectorXd& x) {
     for (int j = 0; j < problem.getNumBounded(); ++j) x[j] = std::min(std::max(x[j], problem.lower[j]), problem.upper[j]);
 }
 
+// The cold start: Clp's all-slack basis with every free column (loop force) basic in place of the slack of
+// the row, not yet taken, where the column's coefficient is largest. A nonbasic free column is given fake
+// bounds (±dual bound, 1e10) by the dual simplex, which must then pivot it in through huge primal
+// infeasibilities: on the whole-body benchmark this start cut the slowest of its 200 cold solves from 1,320
+// pivots to 401 (mean 487 to 347, docs/tensions.md "Speed"). A singular choice is repaired by Clp's
+// factorization, which puts slacks back.
+void startFromSlacksAndFreeColumns(const DistributionProblem& problem, ClpSimplex& simplex,
+                                   std::vector<char>& rowTaken) {
+    simplex.allSlackBasis(true);
+    rowTaken.assign(static_cast<std::size_t>(problem.getNumRows()), 0);
+    for (int j = problem.getNumBounded(); j < problem.getNumVariables(); ++j) {
+        int row = -1;
+        double largest = 0;
+        for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, j); it; ++it)
+            if (!rowTaken[static_cast<std::size_t>(it.row())] && std::abs(it.value()) > largest)
+                largest = std::abs(it.value()), row = static_cast<int>(it.row());
+        if (row < 0) continue;  // a zero column: it stays nonbasic
+        rowTaken[static_cast<std::size_t>(row)] = 1;
+        simplex.setColumnStatus(j, ClpSimplex::basic);
+        simplex.setRowStatus(row, ClpSimplex::atLowerBound);
+    }
+}
+
 // The phase-1 LP: min sum(s+ + s-) over x within its bounds and s+, s- >= 0 with
 // tau - tolerance <= A x + s+ - s- <= tau + tolerance. Returns false when Clp fails; the reserve is s+ - s-.
 bool solvePhaseOne(const DistributionProblem& problem, const LpArrays& arrays, Eigen::VectorXd& x,
@@ -66,6 +89,8 @@ bool solvePhaseOne(const DistributionProblem& problem, const LpArrays& arrays, E
     simplex.setLogLevel(0);
     simplex.loadProblem(columns + 2 * rows, rows, starts.data(), indices.data(), values.data(), columnLower.data(),
                         columnUpper.data(), cost.data(), arrays.rowLower.data(), arrays.rowUpper.data());
+    std::vector<char> rowTaken;
+    startFromSlacksAndFreeColumns(problem, simplex, rowTaken);  // x's columns keep their indices
     simplex.dual();
     if (simplex.status() != 0) simplex.primal();
     iterations += simplex.numberIterations();
@@ -79,16 +104,25 @@ bool solvePhaseOne(const DistributionProblem& problem, const LpArrays& arrays, E
 
 }  // namespace
 
+bool solvePhaseOneLp(const DistributionProblem& problem, Eigen::VectorXd& x, Eigen::VectorXd& reserve,
+                     int& iterations) {
+    validateDistributionProblem(problem);
+    LpArrays arrays;
+    arrays.fill(problem);
+    return solvePhaseOne(problem, arrays, x, reserve, iterations);
+}
+
 struct LpSolver::Backend {
     ClpSimplex simplex;
     bool loaded = false;
     LpArrays arrays;
     std::vector<unsigned char> basis;  // the previous frame's, while the problem is reloaded
+    std::vector<char> rowTaken;        // startFromSlacksAndFreeColumns's workspace
 
     Backend() { simplex.setLogLevel(0); }
 
     // Loads A, bounds and costs, and gives the new problem the previous frame's basis (Clp's status arrays)
-    // when the sizes are unchanged, for the dual simplex to start from.
+    // when the sizes are unchanged, for the dual simplex to start from; else the cold start.
     void load(const DistributionProblem& problem) {
         arrays.fill(problem);
         const Eigen::SparseMatrix<double>& A = problem.A;
@@ -99,15 +133,16 @@ struct LpSolver::Backend {
                             arrays.columnLower.data(), arrays.columnUpper.data(), arrays.cost.data(),
                             arrays.rowLower.data(), arrays.rowUpper.data());
         if (keepBasis) simplex.copyinStatus(basis.data());
+        else startFromSlacksAndFreeColumns(problem, simplex, rowTaken);
         loaded = true;
     }
 
     // Dual simplex from the current basis; on trouble (iteration limit, numerical errors) once more from
-    // the slack basis, then the primal simplex. Clp's status: 0 optimal, 1 infeasible, others failed.
-    int run() {
+    // the cold start, then the primal simplex. Clp's status: 0 optimal, 1 infeasible, others failed.
+    int run(const DistributionProblem& problem) {
         simplex.dual();
         if (simplex.status() <= 1) return simplex.status();
-        simplex.allSlackBasis(true);
+        startFromSlacksAndFreeColumns(problem, simplex, rowTaken);
         simplex.dual();
         if (simplex.status() <= 1) return simplex.status();
         simplex.primal();
@@ -124,8 +159,9 @@ void LpSolver::solve(const DistributionProblem& problem, DistributionResult& res
     validateDistributionProblem(problem);
     const int rows = problem.getNumRows(), columns = problem.getNumVariables();
     backend_->load(problem);
-    int status = backend_->run();
+    int status = backend_->run(problem);
     result.iterations = backend_->simplex.numberIterations();
+    result.usedIpopt = false;
     result.reserve.setZero(rows);
     result.multipliers.setZero(rows);
     result.x.setZero(columns);
@@ -139,7 +175,7 @@ void LpSolver::solve(const DistributionProblem& problem, DistributionResult& res
                 result.status = DistributionStatus::Infeasible;
                 result.reserve = reserve;
             } else {
-                backend_->simplex.allSlackBasis(true);
+                startFromSlacksAndFreeColumns(problem, backend_->simplex, backend_->rowTaken);
                 backend_->simplex.dual();
                 status = backend_->simplex.status();
                 result.iterations += backend_->simplex.numberIterations();

@@ -4,17 +4,19 @@
 #include <vector>
 
 #include "sinew/core/error.hpp"
+#include "sinew/tensions/infeasible_frame.hpp"
 
 namespace sinew {
 
 StaticOptimization::StaticOptimization(StaticOptimizationSettings settings, ActiveSetOptions options)
-    : settings_(std::move(settings)), solver_(options) {
+    : settings_(std::move(settings)), solver_(options), infeasibilityTolerance_(options.infeasibilityTolerance) {
     const Eigen::Index numWires = settings_.maxIsometricForce.size();
     if (settings_.minActivation.size() == 0) settings_.minActivation.setZero(numWires);
     if (settings_.maxActivation.size() == 0) settings_.maxActivation.setOnes(numWires);
-    if (settings_.activationExponent != 2)
+    if (!(settings_.activationExponent >= 1) || !std::isfinite(settings_.activationExponent))
         throw Error("static optimization: activation exponent " + std::to_string(settings_.activationExponent) +
-                    " is not supported (the active-set solver minimises the sum of squared activations: use 2)");
+                    ", expected a finite value >= 1 (below 1 the sum of activations^exponent is not convex)");
+    if (settings_.activationExponent != 2) ipopt_ = std::make_unique<IpoptSolver>();
     if (settings_.minActivation.size() != numWires || settings_.maxActivation.size() != numWires)
         throw Error("static optimization: " + std::to_string(settings_.minActivation.size()) + " minimum and " +
                     std::to_string(settings_.maxActivation.size()) + " maximum activations for " +
@@ -38,7 +40,7 @@ StaticOptimization::StaticOptimization(StaticOptimizationSettings settings, Acti
 }
 
 void StaticOptimization::solve(const DistributionProblem& wireProblem, const Eigen::VectorXd& forceMultiplier,
-                               StaticOptimizationResult& result) {
+                               StaticOptimizationResult& result, const Eigen::MatrixXd* reserveColumns) {
     const int numWires = static_cast<int>(settings_.maxIsometricForce.size());
     const int numReserves = static_cast<int>(settings_.reserves.size());
     const int rows = wireProblem.getNumRows(), numFree = wireProblem.numFree;
@@ -46,16 +48,23 @@ void StaticOptimization::solve(const DistributionProblem& wireProblem, const Eig
         throw Error("static optimization: the wire problem has " + std::to_string(wireProblem.getNumBounded()) +
                     " wires and the frame " + std::to_string(forceMultiplier.size()) + " force multipliers, expected " +
                     std::to_string(numWires));
+    if (reserveColumns && (reserveColumns->rows() != rows || reserveColumns->cols() != numReserves))
+        throw Error("static optimization: reserve columns are " + std::to_string(reserveColumns->rows()) + " x " +
+                    std::to_string(reserveColumns->cols()) + ", expected " + std::to_string(rows) + " x " +
+                    std::to_string(numReserves));
     for (const ReserveActuator& reserve : settings_.reserves)
-        if (reserve.dof < 0 || reserve.dof >= rows)
-            throw Error("static optimization: reserve '" + reserve.name + "' acts on DOF " + std::to_string(reserve.dof) +
-                        ", expected 0 to " + std::to_string(rows - 1));
+        if (!reserveColumns && (reserve.body || reserve.dof < 0 || reserve.dof >= rows))
+            throw Error("static optimization: reserve '" + reserve.name + "' " +
+                        (reserve.body ? std::string("acts on links: its generalized forces (reserve columns) must be given")
+                                      : "acts on DOF " + std::to_string(reserve.dof) + ", expected 0 to " +
+                                            std::to_string(rows - 1)));
     for (int w = 0; w < numWires; ++w)
         if (!(forceMultiplier[w] >= 0) || !std::isfinite(forceMultiplier[w]))
             throw Error("static optimization: wire " + std::to_string(w) + " has force multiplier " +
                         std::to_string(forceMultiplier[w]) + ", expected a finite value >= 0");
 
-    // Columns [wires scaled to activations; reserves; free], all rows exact, Σ x² as ½ Σ 2 x².
+    // Columns [wires scaled to activations; reserves; free], all rows exact, Σ |x|^p as Σ (p / p) |x|^p
+    // (for p = 2 the QP's ½ Σ 2 x²).
     const int numBounded = numWires + numReserves;
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(static_cast<std::size_t>(wireProblem.A.nonZeros() + numReserves));
@@ -64,9 +73,15 @@ void StaticOptimization::solve(const DistributionProblem& wireProblem, const Eig
         for (Eigen::SparseMatrix<double>::InnerIterator it(wireProblem.A, w); it; ++it)
             entries.emplace_back(it.row(), w, it.value() * force);
     }
-    for (int r = 0; r < numReserves; ++r)
-        entries.emplace_back(settings_.reserves[static_cast<std::size_t>(r)].dof, numWires + r,
-                             settings_.reserves[static_cast<std::size_t>(r)].optimalForce);
+    for (int r = 0; r < numReserves; ++r) {
+        const double optimalForce = settings_.reserves[static_cast<std::size_t>(r)].optimalForce;
+        if (!reserveColumns) {
+            entries.emplace_back(settings_.reserves[static_cast<std::size_t>(r)].dof, numWires + r, optimalForce);
+            continue;
+        }
+        for (int i = 0; i < rows; ++i)
+            if ((*reserveColumns)(i, r) != 0) entries.emplace_back(i, numWires + r, (*reserveColumns)(i, r) * optimalForce);
+    }
     for (int k = 0; k < numFree; ++k)
         for (Eigen::SparseMatrix<double>::InnerIterator it(wireProblem.A, numWires + k); it; ++it)
             entries.emplace_back(it.row(), numBounded + k, it.value());
@@ -83,12 +98,22 @@ void StaticOptimization::solve(const DistributionProblem& wireProblem, const Eig
         problem_.upper[numWires + r] = settings_.reserves[static_cast<std::size_t>(r)].maxControl;
     }
     problem_.cost.setZero(numBounded);
-    problem_.weight.setConstant(numBounded, 2.0);
+    const double exponent = settings_.activationExponent;
+    problem_.weight.setConstant(numBounded, exponent);
     problem_.target = wireProblem.target;
     problem_.tolerance.setZero(rows);
     problem_.isEquality.assign(static_cast<std::size_t>(rows), true);
 
-    solver_.solve(problem_, result.distribution);
+    if (!ipopt_) {
+        solver_.solve(problem_, result.distribution);
+    } else {
+        ipopt_->solve(problem_, exponent, result.distribution);
+        const DistributionSolve solveLeastSquares = [&](const DistributionProblem& relaxed, DistributionResult& answer) {
+            ipopt_->solve(relaxed, exponent, answer);
+        };
+        if (result.distribution.status != DistributionStatus::Optimal)
+            reportInfeasibleFrame(problem_, exponent, infeasibilityTolerance_, solveLeastSquares, result.distribution);
+    }
     const Eigen::VectorXd& x = result.distribution.x;
     result.activation = x.head(numWires);
     result.tension = result.activation.cwiseProduct(settings_.maxIsometricForce).cwiseProduct(forceMultiplier);

@@ -12,26 +12,31 @@
 namespace sinew {
 namespace {
 
-// The actuators OpenSim's StaticOptimization optimizes besides the muscles: CoordinateActuators that
-// apply force, from the model (unless the force-set files replace its forces) and the force-set files.
-std::vector<OsimCoordinateActuator> collectReserves(const AnalyzeSetup& setup, const OsimModel& osim) {
-    std::vector<OsimCoordinateActuator> all;
-    if (!setup.replaceForceSet) all = osim.coordinateActuators;
+// Appends the actuators that apply force (OpenSim leaves the others out of the model).
+template <typename Actuator>
+void appendApplying(std::vector<Actuator>& to, const std::vector<Actuator>& from) {
+    std::copy_if(from.begin(), from.end(), std::back_inserter(to), [](const Actuator& a) { return a.limits.appliesForce; });
+}
+
+// The actuators OpenSim's StaticOptimization optimizes besides the muscles: CoordinateActuators,
+// PointActuators and TorqueActuators that apply force, from the model (unless the force-set files replace
+// its forces) and the force-set files.
+void collectReserves(const AnalyzeSetup& setup, const OsimModel& osim, OsimStaticOptimizationOptions& options) {
+    if (!setup.replaceForceSet) {
+        appendApplying(options.reserves, osim.coordinateActuators);
+        appendApplying(options.pointActuators, osim.pointActuators);
+        appendApplying(options.torqueActuators, osim.torqueActuators);
+    }
     for (const std::string& file : setup.forceSetFiles) {
         const OsimForceSet forceSet = readForceSetFile(file);
-        if (!forceSet.pointActuators.empty() || !forceSet.torqueActuators.empty())
-            throw ModelError(forceSet.file, "PointActuator and TorqueActuator reserves (residuals on a floating "
-                                            "root) are not supported by sinew's static optimization yet");
         if (!forceSet.unsupported.empty())
             throw ModelError(forceSet.unsupported.front().where,
                              forceSet.unsupported.front().type + " '" + forceSet.unsupported.front().name +
                                  "' is not an actuator sinew's static optimization can use");
-        all.insert(all.end(), forceSet.coordinateActuators.begin(), forceSet.coordinateActuators.end());
+        appendApplying(options.reserves, forceSet.coordinateActuators);
+        appendApplying(options.pointActuators, forceSet.pointActuators);
+        appendApplying(options.torqueActuators, forceSet.torqueActuators);
     }
-    std::vector<OsimCoordinateActuator> applying;
-    std::copy_if(all.begin(), all.end(), std::back_inserter(applying),
-                 [](const OsimCoordinateActuator& a) { return a.limits.appliesForce; });
-    return applying;
 }
 
 }  // namespace
@@ -47,9 +52,16 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
     };
     for (const OsimUnsupported& other : setup.unsupported)
         note("not run: " + other.type + " '" + other.name + "' (" + other.where + ")");
-    if (!setup.statesFile.empty())
-        throw ModelError(setup.file, "states_file is not supported yet: give the motion as coordinates_file");
-    if (!setup.speedsFile.empty()) note("speeds_file is ignored: speeds are the coordinates' spline derivatives");
+    const bool states = !setup.statesFile.empty();
+    if (states) {
+        // OpenSim's AnalyzeTool::loadStatesFromFile ignores these next to a states file.
+        if (!setup.coordinatesFile.empty()) note("coordinates_file is ignored: states_file gives the motion");
+        if (setup.lowpassCutoffFrequencyForCoordinates >= 0)
+            note("lowpass_cutoff_frequency_for_coordinates does not apply to states_file (as in OpenSim)");
+    }
+    if (!setup.speedsFile.empty())
+        note(states ? "speeds_file is ignored: states_file gives the speeds"
+                    : "speeds_file is ignored: speeds are the coordinates' spline derivatives");
     if (setup.replaceForceSet && !setup.forceSetFiles.empty())
         throw ModelError(setup.file, "replace_force_set true would drop the muscles: sinew's static "
                                      "optimization needs them (set it false to add the reserves)");
@@ -58,14 +70,15 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
                                          "muscles) is not supported");
     if (!analysis.on)
         throw ModelError(analysis.where, "StaticOptimization '" + analysis.name + "' is switched off (<on>false</on>)");
-    if (analysis.activationExponent != 2)
+    if (analysis.activationExponent < 1)
         throw ModelError(analysis.where, "activation_exponent " + std::to_string(analysis.activationExponent) +
-                                             " is not supported (the active-set QP minimizes squared activations)");
+                                             " is below 1: the sum of activations^exponent is then not convex");
     if (analysis.stepInterval != 1) note("step_interval is ignored: every frame is reported");
     note("results are written with 17 significant digits (output_precision " +
          std::to_string(setup.outputPrecision) + " is not applied)");
-    note("optimizer_convergence_criterion and optimizer_max_iterations do not apply: the active-set QP solves "
-         "each frame to optimality");
+    note(std::string("optimizer_convergence_criterion and optimizer_max_iterations do not apply: ") +
+         (analysis.activationExponent == 2 ? "the active-set QP solves each frame to optimality"
+                                           : "Ipopt solves each frame to 1e-12 (activation_exponent other than 2)"));
 
     const OsimModel osim = readOsimModel(setup.modelFile);
     OsimConversion conversion = convertOsimModel(osim);
@@ -76,8 +89,10 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
     options.lowpassCutoffHz = setup.lowpassCutoffFrequencyForCoordinates;
     options.startTime = std::max(setup.initialTime, analysis.startTime);
     options.finalTime = std::min(setup.finalTime, analysis.endTime);
-    options.reserves = collectReserves(setup, osim);
+    collectReserves(setup, osim, options);
+    options.motionIsStates = states;
     options.useMusclePhysiology = analysis.useMusclePhysiology;
+    options.activationExponent = analysis.activationExponent;
     options.onFrame = onFrame;
     const int numWires = model.getNumWires();
     options.minActivation.resize(numWires);
@@ -92,7 +107,8 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
     std::optional<ExternalLoads> loads;
     if (!setup.externalLoadsFile.empty()) loads = readExternalLoads(setup.externalLoadsFile);
     const OsimStaticOptimizationResult result =
-        runOsimStaticOptimization(model, readStorageFile(setup.coordinatesFile), loads ? &*loads : nullptr, options);
+        runOsimStaticOptimization(model, readStorageFile(states ? setup.statesFile : setup.coordinatesFile),
+                                  loads ? &*loads : nullptr, options);
     if (result.flaggedFrames > 0)
         note(std::to_string(result.flaggedFrames) + " frames were not solved to optimality (status in the report)");
 

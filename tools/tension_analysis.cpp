@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "sinew/core/body_actuator.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
 #include "sinew/core/thelen_muscle.hpp"
@@ -34,6 +35,27 @@ Eigen::VectorXd getWireStrengths(const Model& model, const TensionAnalysisOption
     return strength;
 }
 
+// A reserve's DOF or links must be the model's; a body actuator's axis must have a direction.
+void checkReserve(const Model& model, const ReserveActuator& reserve) {
+    const auto fail = [&](const std::string& what) { throw Error("tensions: reserve '" + reserve.name + "' " + what); };
+    if (!reserve.body) {
+        if (reserve.dof < 0 || reserve.dof >= model.getNumU())
+            fail("acts on DOF " + std::to_string(reserve.dof) + ", expected 0 to " + std::to_string(model.getNumU() - 1));
+        return;
+    }
+    const BodyActuator& body = *reserve.body;
+    const bool pointForce = body.kind == BodyActuator::Kind::PointForce;
+    for (const int link : {body.link, body.reactionLink})
+        if (link < kGround || link >= model.getNumLinks())
+            fail("acts on link " + std::to_string(link) + ", expected ground (-1) or 0 to " +
+                 std::to_string(model.getNumLinks() - 1));
+    if (pointForce && body.link == kGround) fail("pushes ground, which cannot move");
+    if (!(body.axis.norm() > 0) || !body.axis.allFinite() || !body.point.allFinite())
+        fail(std::string("has ") + (pointForce ? "direction" : "axis") + " (" + std::to_string(body.axis.x()) + ", " +
+             std::to_string(body.axis.y()) + ", " + std::to_string(body.axis.z()) +
+             ") or a point that is not finite; expected a finite, non-zero vector");
+}
+
 StaticOptimizationSettings makeStaticOptimizationSettings(const Eigen::VectorXd& maxIsometricForce,
                                                           const TensionAnalysisOptions& options) {
     StaticOptimizationSettings settings;
@@ -41,6 +63,7 @@ StaticOptimizationSettings makeStaticOptimizationSettings(const Eigen::VectorXd&
     settings.minActivation = options.minActivation;
     settings.maxActivation = options.maxActivation;
     settings.reserves = options.reserves;
+    settings.activationExponent = options.activationExponent;
     return settings;
 }
 
@@ -71,8 +94,13 @@ TensionAnalysis::TensionAnalysis(const Model& model, TensionAnalysisOptions opti
       problem_(builder_.makeProblem()),
       J_(model.getNumWires(), model.getNumU()),
       forceMultiplier_(Eigen::VectorXd::Ones(model.getNumWires())),
-      forcePerActivation_(maxIsometricForce_) {
+      forcePerActivation_(maxIsometricForce_),
+      reserveColumns_(Eigen::MatrixXd::Zero(model.getNumU(), static_cast<Eigen::Index>(options_.reserves.size()))) {
     const int nu = model.getNumU(), numWires = model.getNumWires();
+    for (std::size_t r = 0; r < options_.reserves.size(); ++r) {
+        checkReserve(model, options_.reserves[r]);
+        if (!options_.reserves[r].body) reserveColumns_(options_.reserves[r].dof, static_cast<Eigen::Index>(r)) = 1;
+    }
     if (numWires == 0) throw Error("tensions: model '" + model.getName() + "' has no wires");
     switch (options_.method) {
         case TensionMethod::Lp: lp_ = std::make_unique<LpSolver>(); break;
@@ -101,9 +129,18 @@ void TensionAnalysis::reset() {
     if (so_) so_->reset();
 }
 
-// A DOF's row of A is the generalized force per unit of each variable; a row that is zero to rounding
-// (a floating root under internal wire forces) cannot be distributed, so its target is set to zero and
-// its tau reported as residual.
+// A body reserve's generalized force per unit force follows the configuration (J^T F); a DOF reserve's is
+// its unit vector, set once.
+void TensionAnalysis::calcReserveColumns() {
+    for (std::size_t r = 0; r < options_.reserves.size(); ++r)
+        if (options_.reserves[r].body)
+            calcBodyActuatorGeneralizedForce(model_, data_, *options_.reserves[r].body,
+                                             reserveColumns_.col(static_cast<Eigen::Index>(r)));
+}
+
+// A DOF's row of A (and, for static optimization, of the reserves' columns) is the generalized force per
+// unit of each variable; a row that is zero to rounding (a floating root under internal wire forces and no
+// residual actuators) cannot be distributed, so its target is set to zero and its tau reported as residual.
 void TensionAnalysis::markUnactuated() {
     const Eigen::Index nu = problem_.getNumRows();
     Eigen::VectorXd& rowSize = frame_.reserve;  // workspace, overwritten after the solve
@@ -111,6 +148,9 @@ void TensionAnalysis::markUnactuated() {
     for (Eigen::Index k = 0; k < problem_.A.outerSize(); ++k)
         for (Eigen::SparseMatrix<double>::InnerIterator it(problem_.A, k); it; ++it)
             rowSize[it.row()] = std::fmax(rowSize[it.row()], std::fabs(it.value()));
+    if (so_)
+        for (Eigen::Index r = 0; r < reserveColumns_.cols(); ++r)
+            for (Eigen::Index i = 0; i < nu; ++i) rowSize[i] = std::fmax(rowSize[i], std::fabs(reserveColumns_(i, r)));
     const double threshold = options_.unactuatedThreshold * rowSize.maxCoeff();
     frame_.unactuatedResidual = 0;
     for (Eigen::Index i = 0; i < nu; ++i) {
@@ -146,13 +186,14 @@ const TensionFrame& TensionAnalysis::calcFrame(const Eigen::VectorXd& q, const E
     calcWirePaths(model_, data_);
     calcWireJacobian(model_, data_, J_);
     builder_.update(data_, J_, frame.tau, problem_);
+    if (so_) calcReserveColumns();
     markUnactuated();
 
     const int numWires = model_.getNumWires();
     const DistributionResult* result = &distribution_;
     if (options_.method == TensionMethod::StaticOptimization) {
         calcForceMultipliers();
-        so_->solve(problem_, forceMultiplier_, soResult_);
+        so_->solve(problem_, forceMultiplier_, soResult_, reserveColumns_.cols() > 0 ? &reserveColumns_ : nullptr);
         result = &soResult_.distribution;
         frame.activation = soResult_.activation;
         frame.tension = soResult_.tension;
@@ -170,6 +211,7 @@ const TensionFrame& TensionAnalysis::calcFrame(const Eigen::VectorXd& q, const E
     }
     frame.status = result->status;
     frame.iterations = result->iterations;
+    frame.usedIpopt = result->usedIpopt;
     frame.reserve = result->reserve;
     frame.residual = result->residual;
     for (Eigen::Index i = 0; i < frame.residual.size(); ++i)

@@ -52,25 +52,21 @@ StorageTable makeTable(const std::string& name, const std::vector<std::string>& 
     return table;
 }
 
-}  // namespace
-
-TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& motion, const ExternalLoads* loads,
-                                       const TensionMotionOptions& options) {
+// Every frame of `trajectory` (q, qdot as u, qddot as udot), with the rows of `sampleTimes` listed in
+// `missingRows` flagged in between.
+TensionMotionResult analyseTrajectory(const Model& model, const CoordinateTrajectory& trajectory,
+                                      const Eigen::VectorXd& sampleTimes, std::vector<int> missingRows,
+                                      const ExternalLoads* loads, const TensionMotionOptions& options) {
     const std::vector<Coordinate>& coordinates = model.getCoordinates();
     TensionMotionResult result;
-    const CoordinateSamples allSamples = readCoordinateSamples(model, motion);
-    const CoordinateSamples samples = keepFiniteRows(allSamples, options, result.missingRows);
-    const CoordinateTrajectory trajectory = preprocessCoordinateSamples(model, samples, options.lowpassCutoffHz,
-                                                                        options.startTime, options.finalTime);
-    std::vector<SmoothingSpline> speedSplines;
-    if (options.accelerationsFromSpeedSplines) speedSplines = fitSpeedSplines(trajectory);
+    result.missingRows = std::move(missingRows);
 
     std::optional<MeasuredLoads> measured;
     if (loads) measured.emplace(model, *loads);
     TensionAnalysis analysis(model, options.analysis);
     const bool staticOptimization = options.analysis.method == TensionMethod::StaticOptimization;
 
-    std::vector<std::string> wireNames, reportColumns = {"status", "Z", "active_wires", "iterations",
+    std::vector<std::string> wireNames, reportColumns = {"status", "Z", "active_wires", "iterations", "ipopt",
                                                          "unactuated_residual"};
     for (const Wire& wire : model.getWires()) wireNames.push_back(wire.name);
     for (const Coordinate& c : coordinates) reportColumns.push_back(c.name + "_residual");
@@ -86,7 +82,7 @@ TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& m
 
     Data data(model);
     std::vector<SpatialVector> linkForces(static_cast<std::size_t>(model.getNumLinks()));
-    const Eigen::Index n = samples.q.cols();
+    const Eigen::Index n = trajectory.q.cols();
     Eigen::VectorXd q(n), u(n), udot(n);
     const auto append = [](StorageTable& table, double t, const Eigen::VectorXd& values) {
         table.times.push_back(t);
@@ -108,16 +104,13 @@ TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& m
     const int frames = static_cast<int>(trajectory.times.size());
     for (int i = 0; i < frames; ++i) {
         const double t = trajectory.times[i];
-        for (; nextMissing < missing.size() && allSamples.times[missing[nextMissing]] <= t; ++nextMissing)
-            appendMissing(allSamples.times[missing[nextMissing]]);
+        for (; nextMissing < missing.size() && sampleTimes[missing[nextMissing]] <= t; ++nextMissing)
+            appendMissing(sampleTimes[missing[nextMissing]]);
         // After resampling (--lowpass over a gap) a frame may fall on a missing row's time: it stays flagged.
-        if (nextMissing > 0 && allSamples.times[missing[nextMissing - 1]] == t) continue;
+        if (nextMissing > 0 && sampleTimes[missing[nextMissing - 1]] == t) continue;
         q = trajectory.q.row(i).transpose();
         u = trajectory.qdot.row(i).transpose();
-        if (options.accelerationsFromSpeedSplines)
-            for (Eigen::Index j = 0; j < n; ++j) udot[j] = speedSplines[static_cast<std::size_t>(j)].calcDerivative(t, 1);
-        else
-            udot = trajectory.qddot.row(i).transpose();
+        udot = trajectory.qddot.row(i).transpose();
         std::fill(linkForces.begin(), linkForces.end(), SpatialVector::Zero());
         if (measured) {
             calcPositionKinematics(model, data, q);
@@ -128,6 +121,7 @@ TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& m
             throw Error("tensions at t = " + std::to_string(t) + " s (frame " + std::to_string(i + 1) +
                         "): a generalized force from inverse dynamics is not finite");
         result.infeasibleFrames += frame.status == DistributionStatus::Infeasible;
+        result.ipoptFrames += frame.usedIpopt;
         result.failedFrames += frame.status == DistributionStatus::Failed;
         append(result.tensions, t, frame.tension);
         if (staticOptimization) {
@@ -136,6 +130,7 @@ TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& m
         }
         std::vector<double> row = {static_cast<double>(frame.status), frame.torqueError,
                                    static_cast<double>(frame.activeWires), static_cast<double>(frame.iterations),
+                                   frame.usedIpopt ? 1.0 : 0.0,
                                    frame.unactuatedResidual};
         row.insert(row.end(), frame.residual.data(), frame.residual.data() + frame.residual.size());
         row.insert(row.end(), frame.reserve.data(), frame.reserve.data() + frame.reserve.size());
@@ -143,9 +138,42 @@ TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& m
         result.report.rows.push_back(std::move(row));
         if (options.onFrame) options.onFrame(i + 1, frames);
     }
-    for (; nextMissing < missing.size(); ++nextMissing) appendMissing(allSamples.times[missing[nextMissing]]);
+    for (; nextMissing < missing.size(); ++nextMissing) appendMissing(sampleTimes[missing[nextMissing]]);
     result.flaggedFrames = result.infeasibleFrames + result.failedFrames + static_cast<int>(missing.size());
     return result;
+}
+
+}  // namespace
+
+TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& motion, const ExternalLoads* loads,
+                                       const TensionMotionOptions& options) {
+    std::vector<int> missingRows;
+    const CoordinateSamples allSamples = readCoordinateSamples(model, motion);
+    const CoordinateSamples samples = keepFiniteRows(allSamples, options, missingRows);
+    CoordinateTrajectory trajectory = preprocessCoordinateSamples(model, samples, options.lowpassCutoffHz,
+                                                                  options.startTime, options.finalTime);
+    if (options.accelerationsFromSpeedSplines) {
+        const std::vector<SmoothingSpline> speedSplines = fitSpeedSplines(trajectory);
+        for (Eigen::Index i = 0; i < trajectory.times.size(); ++i)
+            for (Eigen::Index j = 0; j < trajectory.qddot.cols(); ++j)
+                trajectory.qddot(i, j) = speedSplines[static_cast<std::size_t>(j)].calcDerivative(trajectory.times[i], 1);
+    }
+    return analyseTrajectory(model, trajectory, allSamples.times, std::move(missingRows), loads, options);
+}
+
+TensionMotionResult runTensionAnalysis(const Model& model, const CoordinateTrajectory& states,
+                                       const ExternalLoads* loads, const TensionMotionOptions& options) {
+    const Eigen::Index frames = states.times.size();
+    if (states.q.rows() != frames || states.qdot.rows() != frames || states.qddot.rows() != frames ||
+        states.q.cols() != model.getNumQ() || states.qdot.cols() != model.getNumU() ||
+        states.qddot.cols() != model.getNumU())
+        throw Error("tensions: states of " + std::to_string(frames) + " frames with q " +
+                    std::to_string(states.q.rows()) + " x " + std::to_string(states.q.cols()) + ", u " +
+                    std::to_string(states.qdot.rows()) + " x " + std::to_string(states.qdot.cols()) + " and udot " +
+                    std::to_string(states.qddot.rows()) + " x " + std::to_string(states.qddot.cols()) +
+                    " for model '" + model.getName() + "' (nq " + std::to_string(model.getNumQ()) + ", nu " +
+                    std::to_string(model.getNumU()) + ")");
+    return analyseTrajectory(model, states, states.times, {}, loads, options);
 }
 
 }  // namespace sinew

@@ -3,6 +3,7 @@
 // speeds it predicts, tau = -J^T f, and no allocation while evaluating.
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <random>
 #include <string>
 #include <utility>
@@ -55,7 +56,6 @@ TEST(WirePathFeatures, JacobianMatchesCentralDifferences) {
     Eigen::MatrixXd J(model.getNumWires(), model.getNumU());
     std::vector<int> wrappedPoses(static_cast<std::size_t>(model.getNumWires()), 0), straightPoses = wrappedPoses;
     int tangentAcrossQuadrant = 0, conditionalOff = 0, conditionalOn = 0;
-    double worstEllipsoid = 0;
     for (int trial = 0; trial < 60; ++trial) {
         const Eigen::VectorXd q = test::randomWrapArmPose(model, rng);
         calcPositionKinematics(model, data, q);
@@ -80,10 +80,6 @@ TEST(WirePathFeatures, JacobianMatchesCentralDifferences) {
                 error = std::max(error, std::abs(J(w, i) - d.length));
                 scale = std::max(scale, std::abs(d.length));
             }
-            if (wire.name == "over_ellipsoid") {
-                worstEllipsoid = std::max(worstEllipsoid, error / scale);
-                continue;
-            }
             EXPECT_LE(error / scale, 1e-6) << wire.name << " trial " << trial;
         }
     }
@@ -96,34 +92,22 @@ TEST(WirePathFeatures, JacobianMatchesCentralDifferences) {
     EXPECT_GT(tangentAcrossQuadrant, 0);
     EXPECT_GT(conditionalOn, 0);
     EXPECT_GT(conditionalOff, 0);
-    // OpenSim's ellipsoid path lies in a plane its heuristics choose, not along a geodesic, so the envelope
-    // Jacobian (which OpenSim's moment arms use too) is not d(length)/du there: measured, not asserted.
-    RecordProperty("worst_ellipsoid_relative_difference", std::to_string(worstEllipsoid));
 }
 
-// Where the ellipsoid's path is a geodesic (equal radii, no quadrant: a great circle), J is dL/du; in
-// general J is the derivative with the tangent points held on the ellipsoid's link, as OpenSim's.
-TEST(WirePathFeatures, EllipsoidJacobianIsTheEnvelopeDerivative) {
-    std::string yaml = test::kWrapArmYaml;
+// OpenSim's ellipsoid path lies in a plane its heuristics turn with the ends, so the envelope derivative
+// (tangent points held on the ellipsoid's link, which OpenSim's moment arms use) is not dL/du; sinew's J,
+// differentiated through the whole path, is. Measured here too: how far the envelope is from dL/du, which
+// is how far the test above would miss without the whole-path derivative.
+TEST(WirePathFeatures, EllipsoidJacobianIsTheLengthDerivativeNotTheEnvelope) {
     const Model model = test::loadWrapArm();
-    yaml.replace(yaml.find("radii: [0.035, 0.02, 0.025], quadrant: -y"), 41, "radii: [0.03, 0.03, 0.03], quadrant: all");
-    const Model round = readModelText(yaml, "round.yaml");
     const int w = model.findWireIndex("over_ellipsoid"), upper = model.findLinkIndex("upper");
     std::mt19937 rng(24);
     Data data(model), moved(model);
     Eigen::MatrixXd J(model.getNumWires(), model.getNumU());
     int wrapped = 0;
+    double worstEnvelope = 0;
     for (int trial = 0; trial < 40; ++trial) {
         const Eigen::VectorXd q = test::randomWrapArmPose(model, rng);
-        calcPositionKinematics(round, data, q);
-        calcWirePaths(round, data);
-        calcWireJacobian(round, data, J);
-        for (int i = 0; i < model.getNumU(); ++i) {
-            const Difference d = differentiate(round, q, w, i, 1e-6);
-            if (d.sameTopology) {
-                EXPECT_NEAR(J(w, i), d.length, 1e-6 * std::max(1.0, std::abs(d.length))) << trial;
-            }
-        }
         calcPositionKinematics(model, data, q);
         calcWirePaths(model, data);
         calcWireJacobian(model, data, J);
@@ -143,12 +127,17 @@ TEST(WirePathFeatures, EllipsoidJacobianIsTheEnvelopeDerivative) {
         };
         for (int i = 0; i < model.getNumU(); ++i) {
             const Eigen::VectorXd e = Eigen::VectorXd::Unit(model.getNumU(), i);
-            const double derivative =
+            const double envelope =
                 (frozenLength(integrateCoordinates(model, q, e, 1e-6)) - frozenLength(integrateCoordinates(model, q, e, -1e-6))) / 2e-6;
-            EXPECT_NEAR(J(w, i), derivative, 1e-8) << trial;
+            const Difference d = differentiate(model, q, w, i, 1e-6);
+            if (!d.sameTopology) continue;
+            EXPECT_NEAR(J(w, i), d.length, 1e-6 * std::max(1.0, std::abs(d.length))) << trial;
+            worstEnvelope = std::max(worstEnvelope, std::abs(envelope - d.length));
         }
     }
     EXPECT_GT(wrapped, 5);
+    std::cout << "over_ellipsoid: the envelope derivative alone differs from dL/du by up to " << worstEnvelope << " m\n";
+    EXPECT_GT(worstEnvelope, 1e-4);
 }
 
 TEST(WirePathFeatures, JacobianPredictsSpeedsAndGivesTheGeneralizedForces) {

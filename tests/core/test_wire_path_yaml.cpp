@@ -96,7 +96,7 @@ TEST(WirePathYaml, BadFeaturesAreRefusedAtTheirLine) {
                         {"conditional_and_moving", "point 1", "unknown coordinate 'wrist'"}));
     EXPECT_TRUE(refused("range: [0.5, 2.0]", "range: [2.5, 2.0]", "bad.yaml:49", {"min <= max"}));
     EXPECT_TRUE(refused("x: {coordinate: elbow,", "x: {coordinate: shoulder_qx,", "bad.yaml:50",
-                        {"quaternion", "pin or custom"}));
+                        {"quaternion", "pin and custom"}));
     EXPECT_TRUE(refused("y: {coordinate: elbow, function: {type: linear", "w: {coordinate: elbow, function: {type: linear",
                         "bad.yaml:54", {"unknown field 'w' in moving"}));
 }

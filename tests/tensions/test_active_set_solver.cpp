@@ -1,5 +1,6 @@
 // The active-set QP against Ipopt on random problems with the degeneracies of real models, its warm start
-// against cold solves, its infeasibility report, and the KKT residuals it reports.
+// against cold solves, the Ipopt fallback against the uncapped active set, its infeasibility report, and
+// the KKT residuals it reports.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include "support/random_distribution_problems.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/tensions/active_set_solver.hpp"
+#include "sinew/tensions/ipopt_solver.hpp"
 
 namespace sinew {
 namespace {
@@ -68,6 +70,62 @@ TEST(ActiveSetSolver, WarmStartsGiveTheColdAnswer) {
         if (frame > 0) warmIterations += warmResult.iterations, coldIterations += coldResult.iterations;
     }
     EXPECT_LT(warmIterations, coldIterations);
+}
+
+TEST(ActiveSetSolver, IpoptFallbackGivesTheActiveSetOptimum) {
+    // An iteration cap of 1 makes the active set fail on every one of these problems; the frame then goes to
+    // Ipopt (in the library), which must land on the optimum the uncapped active set finds.
+    int fallbacks = 0;
+    for (const test::RandomProblemOptions& o : test::makeProblemSweep(-0.5, 1.5, 0.1)) {
+        const DistributionProblem p = test::makeRandomProblem(o);
+        const std::string name = test::describe(o);
+        ActiveSetSolver uncapped;
+        DistributionResult reference;
+        uncapped.solve(p, reference);
+        ASSERT_EQ(reference.status, DistributionStatus::Optimal) << name;
+        ASSERT_FALSE(reference.usedIpopt) << name;
+
+        ActiveSetOptions capped;
+        capped.maxIterations = 1;
+        ActiveSetSolver withFallback(capped);
+        DistributionResult result;
+        withFallback.solve(p, result);
+        if (reference.iterations <= 1) continue;  // solved in one step: no fallback needed
+        ++fallbacks;
+        EXPECT_TRUE(result.usedIpopt) << name;
+        ASSERT_EQ(result.status, DistributionStatus::Optimal) << name;
+        EXPECT_LE(result.kkt.getMax(), 1e-6) << name;
+        expectWithinBounds(p, result.x, name);
+        EXPECT_NEAR(result.objective, reference.objective, 1e-6 * std::abs(reference.objective)) << name;
+        EXPECT_LE((result.x.head(p.getNumBounded()) - reference.x.head(p.getNumBounded())).cwiseAbs().maxCoeff(),
+                  1e-4 * p.upper.maxCoeff())
+            << name;
+        EXPECT_LE((result.multipliers - reference.multipliers).cwiseAbs().maxCoeff(),
+                  1e-4 * std::max(1.0, reference.multipliers.cwiseAbs().maxCoeff()))
+            << name;
+
+        // Ipopt's own answer (before the fallback's polishing Newton steps) is the optimum too.
+        IpoptSolver ipopt;
+        DistributionResult direct;
+        ipopt.solve(p, 2.0, direct);
+        ASSERT_EQ(direct.status, DistributionStatus::Optimal) << name;
+        EXPECT_TRUE(direct.usedIpopt) << name;
+        expectWithinBounds(p, direct.x, name);
+        EXPECT_NEAR(direct.objective, reference.objective, 1e-6 * std::abs(reference.objective)) << name;
+        EXPECT_LE((direct.x.head(p.getNumBounded()) - reference.x.head(p.getNumBounded())).cwiseAbs().maxCoeff(),
+                  1e-4 * p.upper.maxCoeff())
+            << name;
+        EXPECT_LE(direct.kkt.getMax(), 1e-1) << name;  // an interior point: near the bounds, not on them
+
+        // Without the fallback the capped frame is reported as failed, never as optimal.
+        capped.ipoptFallback = false;
+        ActiveSetSolver noFallback(capped);
+        noFallback.solve(p, result);
+        EXPECT_EQ(result.status, DistributionStatus::Failed) << name;
+        EXPECT_FALSE(result.usedIpopt) << name;
+        expectWithinBounds(p, result.x, name);
+    }
+    EXPECT_GE(fallbacks, 10);  // 11 of the 12 need more than one step
 }
 
 TEST(ActiveSetSolver, UnreachableEqualityRowIsInfeasibleWithItsReserve) {

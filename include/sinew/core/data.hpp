@@ -62,6 +62,17 @@ struct Data {
     std::vector<int> wirePathStart;  // numWires
     std::vector<int> wirePathSize;   // numWires
 
+    // calcWirePaths, for the wires over an ellipsoid (isLengthDifferentiatedNumerically): dL/du (nu) in row
+    // wireGradientRow[w] (-1 for the other wires), by central differences of the whole path. Their J rows,
+    // speeds and generalized forces come from these rows, not from the path's point derivatives.
+    Eigen::MatrixXd wireLengthGradient;
+    std::vector<int> wireGradientRow;  // numWires
+    // Workspace for those differences: the link poses, points and coordinates displaced, and one path.
+    std::vector<Eigen::Matrix3d> displacedR_GB;
+    std::vector<Eigen::Vector3d> displacedP_GB, displacedP_GP;
+    Eigen::VectorXd displacedQ;
+    std::vector<WirePathPoint> displacedPath;
+
     // Per link: spatial force [moment about the link's origin p_GB; force], ground axes. Moments about the
     // link rather than the ground origin keep their digits when the model is far from the origin. Filled
     // by calcWireLinkForces; tip-to-base passes use it as workspace.

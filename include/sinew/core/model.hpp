@@ -62,6 +62,18 @@ struct Coordinate {
     bool locked = false;
 };
 
+// OpenSim's CoordinateCouplerConstraint: q[dependentQ] = scaleFactor * function(q[independentQ]), both
+// coordinates with qdot = u (pin or custom joints). The algorithms that take the tree's q as free (inverse
+// dynamics, as OpenSim's, and the wire Jacobian) ignore it; moment arms follow it (core/moment_arms.hpp),
+// forward dynamics refuses a model with one, and applyCoordinateCouplers fills the dependent coordinates.
+struct CoordinateCoupler {
+    std::string name;
+    int dependentQ = 0, dependentU = 0;      // the dependent coordinate's index in q and in u
+    int independentQ = 0, independentU = 0;  // the independent one's
+    Function function = Function::linear(1, 0);  // of the independent coordinate (rad or m)
+    double scaleFactor = 1;
+};
+
 struct Link {
     std::string name;
     double mass = 0;                                    // kg
@@ -182,6 +194,7 @@ public:
     int getNumU() const { return nu_; }
     int getNumWires() const { return static_cast<int>(wires_.size()); }
     int getNumLoops() const { return static_cast<int>(loops_.size()); }
+    int getNumCouplers() const { return static_cast<int>(couplers_.size()); }
 
     const Link& getLink(int i) const { return links_[static_cast<std::size_t>(i)]; }
     const Joint& getJoint(int i) const { return joints_[static_cast<std::size_t>(i)]; }
@@ -191,6 +204,7 @@ public:
     const std::vector<Joint>& getJoints() const { return joints_; }
     const std::vector<Wire>& getWires() const { return wires_; }
     const std::vector<Loop>& getLoops() const { return loops_; }
+    const std::vector<CoordinateCoupler>& getCouplers() const { return couplers_; }
     const std::vector<WirePoint>& getWirePoints() const { return wirePoints_; }  // all wires' points, flat
     const std::vector<WrapObject>& getWrapObjects() const { return wrapObjects_; }
 
@@ -210,6 +224,7 @@ private:
     std::vector<Link> links_;
     std::vector<Joint> joints_;
     std::vector<Loop> loops_;
+    std::vector<CoordinateCoupler> couplers_;
     std::vector<Wire> wires_;
     std::vector<WirePoint> wirePoints_;
     std::vector<WrapObject> wrapObjects_;

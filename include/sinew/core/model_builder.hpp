@@ -74,6 +74,18 @@ struct LoopSpec {
     std::string where;
 };
 
+// OpenSim's CoordinateCouplerConstraint with one independent coordinate: dependent = scaleFactor *
+// function(independent). Both must be pin or custom-joint coordinates; a coordinate is dependent in one
+// coupler at most, and a dependent coordinate drives no coupler (no chains).
+struct CoordinateCouplerSpec {
+    std::string name;
+    std::string dependentCoordinate;
+    std::string independentCoordinate;
+    Function function = Function::linear(1, 0);
+    double scaleFactor = 1;
+    std::string where;
+};
+
 // OpenSim's ConditionalPathPoint: the point is on the path while `coordinate` lies in [min, max].
 struct WirePointConditionSpec {
     std::string coordinate;
@@ -136,6 +148,7 @@ public:
     void addJoint(JointSpec joint) { joints_.push_back(std::move(joint)); }
     void addVirtualLink(VirtualLinkSpec link) { virtualLinks_.push_back(std::move(link)); }
     void addLoop(LoopSpec loop) { loops_.push_back(std::move(loop)); }
+    void addCoupler(CoordinateCouplerSpec coupler) { couplers_.push_back(std::move(coupler)); }
     void addWire(WireSpec wire) { wires_.push_back(std::move(wire)); }
     void addWrapObject(WrapObjectSpec object) { wrapObjects_.push_back(std::move(object)); }
 
@@ -150,6 +163,7 @@ private:
     std::vector<JointSpec> joints_;
     std::vector<VirtualLinkSpec> virtualLinks_;
     std::vector<LoopSpec> loops_;
+    std::vector<CoordinateCouplerSpec> couplers_;
     std::vector<WireSpec> wires_;
     std::vector<WrapObjectSpec> wrapObjects_;
 };

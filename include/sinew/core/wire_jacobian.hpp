@@ -10,20 +10,22 @@ namespace sinew {
 
 // J(w, :) = sum over segments (1/l)(p_{j+1} - p_j)^T (J_p{j+1} - J_p{j}); so wireSpeed = J u. Wrap
 // tangent points count as fixed on their objects' links, and a moving point adds its motion in its link to
-// its coordinate's column (docs/wire-paths.md). J must be numWires x nu. Needs calcPositionKinematics and
-// calcWirePaths. Each row costs O(points + the links between the wire's points and the root).
+// its coordinate's column (docs/wire-paths.md); a wire over an ellipsoid takes its row from
+// Data::wireLengthGradient. J must be numWires x nu. Needs calcPositionKinematics and calcWirePaths. Each
+// row costs O(points + the links between the wire's points and the root).
 void calcWireJacobian(const Model& model, Data& data, Eigen::Ref<Eigen::MatrixXd> J);
 
 // The spatial forces (moment about each link's origin; force) that tensions f >= 0 (numWires, N) exert on
-// each link, into Data::F_G. Needs calcWirePaths. Moving points also push on their coordinates directly:
-// addWirePointMotionForces gives that part.
+// each link, into Data::F_G. Needs calcWirePaths. The rest of their generalized forces acts on coordinates
+// directly: addWireCoordinateForces gives it.
 void calcWireLinkForces(const Model& model, Data& data, const Eigen::VectorXd& tensions);
 
-// Adds to tau (nu) the generalized forces tensions f exert through moving points' motion in their links
-// (OpenSim's MovingPathPoint), which are no link forces: -f dL/dp . R_GB dp_B/dq on the coordinate's u.
-// Zero for models without moving points. Needs calcWirePaths.
-void addWirePointMotionForces(const Model& model, const Data& data, const Eigen::VectorXd& tensions,
-                              Eigen::Ref<Eigen::VectorXd> tau);
+// Adds to tau (nu) the generalized forces of tensions f that are no link forces: through moving points'
+// motion in their links (OpenSim's MovingPathPoint), -f dL/dp . R_GB dp_B/dq on the coordinate's u; and all
+// of a wire over an ellipsoid's, -f dL/du from Data::wireLengthGradient. Zero for models with neither.
+// Needs calcWirePaths.
+void addWireCoordinateForces(const Model& model, const Data& data, const Eigen::VectorXd& tensions,
+                             Eigen::Ref<Eigen::VectorXd> tau);
 
 // The generalized forces (nu) that tensions f >= 0 (numWires, N) exert: tau = -J^T f, since a tension
 // shortens its wire. Computed in one tip-to-base pass without forming J. Needs calcWirePaths.

@@ -11,8 +11,15 @@
 namespace sinew {
 
 // Fills Data::p_GP and wireLength, and the path as evaluated: dLdp_GP for polyline wires, Data::wirePath
-// for the others. Needs calcPositionKinematics.
+// for the others, and Data::wireLengthGradient for wires over an ellipsoid. Needs calcPositionKinematics.
 void calcWirePaths(const Model& model, Data& data);
+
+// Whether wire w's dL/du is taken by central differences of its whole path rather than from its points:
+// true for wires over an ellipsoid. OpenSim's ellipsoid path lies in a plane its heuristics turn with the
+// path's ends, so it is no shortest path and holding its tangent points fixed (the envelope derivative
+// that is exact for spheres and cylinders) misses how the plane turns; with more wraps on the wire the
+// tangent points of the others move with it too (docs/wire-paths.md).
+bool isLengthDifferentiatedNumerically(const Model& model, int w);
 
 // Fills Data::v_GP and wireSpeed (the time derivative of wireLength). Needs calcVelocityKinematics and
 // calcWirePaths.

@@ -1,7 +1,8 @@
 #pragma once
 // Turns an OpenSim model read by readOsimModel into a sinew Model: bodies become links, every joint a
 // custom joint reproducing OpenSim's kinematics (weld joints stay welds), muscles become wires with their
-// fixed, conditional and moving path points and wrap lists, and a rigid-tendon Thelen 2003 force law.
+// fixed, conditional and moving path points and wrap lists, and a rigid-tendon Thelen 2003 force law;
+// enforced CoordinateCouplerConstraints become couplers.
 // What sinew does not model is listed in OsimConversion::notImported by name and file:line, never dropped
 // in silence. Conventions and the per-joint axis tables: docs/opensim-import.md.
 #include <string>

@@ -12,9 +12,11 @@
 // optimization (static_optimization.hpp) are both this problem.
 #include <Eigen/Core>
 #include <Eigen/QR>
+#include <memory>
 #include <vector>
 
 #include "sinew/tensions/distribution_problem.hpp"
+#include "sinew/tensions/ipopt_solver.hpp"
 
 namespace sinew {
 
@@ -30,6 +32,9 @@ struct ActiveSetOptions {
     // Infeasible.
     double infeasibilityTolerance = 1e-6;
     int maxIterations = 500;
+    // A frame the active set does not solve (iteration limit, numerical breakdown) that the phase-1 LP
+    // finds feasible is solved again by Ipopt (ipopt_solver.hpp; DistributionResult::usedIpopt).
+    bool ipoptFallback = true;
 };
 
 // One solver per sequence of frames; it keeps the previous frame's multipliers as the warm start and its
@@ -39,13 +44,18 @@ public:
     explicit ActiveSetSolver(ActiveSetOptions options = {});
 
     // Solves `problem` (validated; throws sinew::Error when malformed) into `result`, starting from the
-    // previous frame's multipliers when the number of rows is the same.
+    // previous frame's multipliers when the number of rows is the same. A frame whose equality rows no x
+    // within the bounds meets is Infeasible (infeasible_frame.hpp: the phase-1 reserve, the least-squares
+    // answer); a feasible one the active set fails on goes to Ipopt (ActiveSetOptions::ipoptFallback).
     void solve(const DistributionProblem& problem, DistributionResult& result);
     // The next solve starts cold (y = 0).
     void reset() { hasWarmStart_ = false; }
 
 private:
     enum Regime : signed char { AtLower = -1, Free = 0, AtUpper = 1 };
+    static constexpr int kStallIterations = 50;   // Newton steps before a feasibility check (phase 1)
+    static constexpr int kPolishIterations = 20;  // dual Newton steps after the Ipopt fallback
+    void solveDual(const DistributionProblem& problem, DistributionResult& result, int maxIterations = -1);
     void setUpFrame(const DistributionProblem& problem);
     void evaluate(const DistributionProblem& problem);
     bool factorize(const DistributionProblem& problem);
@@ -57,8 +67,12 @@ private:
     ActiveSetOptions options_;
     bool hasWarmStart_ = false;
     int rank_ = 0;  // rank of the free variables' columns G; the dual lives in null(G^T), rows - rank_ wide
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;  // of G (rows x numFree)
-    Eigen::MatrixXd G_;                 // (rows x numFree) the free columns, dense
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;  // of G_
+    Eigen::MatrixXd G_;                 // (numSupportRows_ x numFree) the free columns' non-zero rows, dense
+    int numSupportRows_ = 0;            // rows some free column reaches
+    std::vector<int> rowOrder_;         // (rows) the support rows, then the others
+    std::vector<int> rowPosition_;      // (rows) each row's place in rowOrder_
+    Eigen::VectorXd supportWork_;       // (numSupportRows_)
     Eigen::VectorXd y_;                 // (rows) multipliers; kept between frames
     Eigen::VectorXd sigma_;             // (rows) 1 on tolerance rows, the regulariser on equality rows
     Eigen::VectorXd v_;                 // (numBounded) a_j^T y / weight_j: the unclamped x
@@ -75,6 +89,8 @@ private:
         double slopeChange;
     };
     std::vector<Event> events_;
+    std::unique_ptr<IpoptSolver> ipopt_;  // the fallback, made on first use
+    DistributionResult polished_;         // the fallback's answer after a few dual Newton steps
 };
 
 }  // namespace sinew

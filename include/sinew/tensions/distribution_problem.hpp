@@ -65,10 +65,13 @@ struct DistributionResult {
     double torqueError = 0;       // the paper's Z = ½ |tau - A x|² over all rows
     int activeVariables = 0;      // bounded variables off their lower bound (wires pulling)
     int iterations = 0;           // simplex pivots, or active-set (Newton) steps
+    // The frame was solved by the Ipopt fallback (ipopt_solver.hpp) after the active-set solver failed, or
+    // by Ipopt as the static optimization of an activation exponent other than 2.
+    bool usedIpopt = false;
     KktResiduals kkt;
-    // Infeasible LP frames: the smallest (L1) generalized force per row that, added to A x, makes the frame
-    // feasible (phase-1 LP): which DOF lacks muscle. Infeasible QP frames: the equality rows' residual.
-    // Zero otherwise. (rows)
+    // Infeasible frames: the smallest (L1) generalized force per row that, added to A x, makes the frame
+    // feasible (phase-1 LP; for the QP and static optimization on the equality rows, zero on tolerance
+    // rows): which DOF lacks muscle. Zero otherwise. (rows)
     Eigen::VectorXd reserve;
 };
 

@@ -24,12 +24,19 @@ public:
     // Solves `problem` (validated; throws sinew::Error when malformed) into `result`. result.multipliers
     // are the row duals y (reduced costs cost - A^T y); x is within its bounds (Clp's answer, clamped).
     void solve(const DistributionProblem& problem, DistributionResult& result);
-    // The next solve starts cold: a new ClpSimplex and an all-slack basis.
+    // The next solve starts cold: a new ClpSimplex and the all-slack basis with the free columns basic.
     void reset();
 
 private:
     struct Backend;
     std::unique_ptr<Backend> backend_;
 };
+
+// The phase-1 LP alone: min Σ|reserve_i| over x within its bounds such that every row of A x + reserve is
+// within its band (equality rows exact). reserve (rows) is then the smallest (L1) generalized force per row
+// that makes `problem` feasible, zero when it is; x a point that reaches it. Adds Clp's pivots to
+// `iterations`; false when Clp fails.
+bool solvePhaseOneLp(const DistributionProblem& problem, Eigen::VectorXd& x, Eigen::VectorXd& reserve,
+                     int& iterations);
 
 }  // namespace sinew

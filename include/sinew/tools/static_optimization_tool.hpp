@@ -24,14 +24,21 @@ namespace sinew {
 struct AnalyzeSetup;
 
 struct OsimStaticOptimizationOptions {
+    // false: the motion is coordinates (filtered at lowpassCutoffHz, splined); true: OpenSim states, q and u
+    // taken as they are (osim_states.hpp; the cut-off does not apply, as in OpenSim).
+    bool motionIsStates = false;
     double lowpassCutoffHz = -1;  // Hz; negative: no filtering
     double startTime = -std::numeric_limits<double>::infinity();  // s
     double finalTime = std::numeric_limits<double>::infinity();
-    // Reserve actuators: the model's and the force-set files' CoordinateActuators that apply force.
+    // Reserve actuators: the model's and the force-set files' CoordinateActuators that apply force, then
+    // their PointActuators and TorqueActuators (residuals on a floating root), in that order of columns.
     std::vector<OsimCoordinateActuator> reserves;
+    std::vector<OsimPointActuator> pointActuators;
+    std::vector<OsimTorqueActuator> torqueActuators;
     // (numWires) each muscle's min_control / max_control (OpenSim bounds activations by them); empty: [0, 1].
     Eigen::VectorXd minActivation, maxActivation;
     bool useMusclePhysiology = true;
+    double activationExponent = 2;  // OpenSim's activation_exponent (>= 1)
     std::function<void(int frame, int frames)> onFrame;
 };
 
@@ -45,14 +52,14 @@ struct OsimStaticOptimizationResult {
     int flaggedFrames = 0;  // frames the solver did not solve to optimality
 };
 
-// The wires must all be thelen2003_muscle when useMusclePhysiology; a reserve's coordinate must be one of
+// The wires must all be thelen2003_muscle when useMusclePhysiology; a reserve's coordinate or bodies must be
 // the model's (else sinew::Error at the actuator's file:line).
-OsimStaticOptimizationResult runOsimStaticOptimization(const Model& model, const StorageTable& coordinates,
+OsimStaticOptimizationResult runOsimStaticOptimization(const Model& model, const StorageTable& motionTable,
                                                        const ExternalLoads* loads,
                                                        const OsimStaticOptimizationOptions& options);
 
 // An AnalyzeTool setup with a StaticOptimization analysis, as it stands: model (.osim), force-set files,
-// coordinates, external loads, cut-off, time range. Writes <name>_StaticOptimization_force.sto,
+// states or coordinates, external loads, cut-off, time range. Writes <name>_StaticOptimization_force.sto,
 // _activation.sto and sinew's per-frame _report.sto into results_directory (or outputDirectory when
 // given) and returns the files written. `notes` receives what the run left out or could not honour.
 std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, const std::string& outputDirectory,

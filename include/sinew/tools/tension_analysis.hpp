@@ -33,13 +33,17 @@ struct TensionAnalysisOptions {
     // (numWires) N: the LP / QP upper bound of each tension. Empty: each wire's max isometric force, which
     // every wire then needs (thelen2003_muscle); a wire with another law must be given one here.
     Eigen::VectorXd maxTension;
-    // Static optimization: (numWires) activation bounds (empty: [0, 1]) and reserve actuators on DOFs.
+    // Static optimization: (numWires) activation bounds (empty: [0, 1]) and reserve actuators, on DOFs or
+    // (ReserveActuator::body) forces and torques on links, e.g. a floating root's residuals.
     Eigen::VectorXd minActivation, maxActivation;
     std::vector<ReserveActuator> reserves;
     // Static optimization: a wire's force per unit activation is max isometric force times the fibre's
     // active force-length, force-velocity (at full activation) and cos(pennation), as OpenSim's
     // use_muscle_physiology; false: max isometric force alone.
     bool useMusclePhysiology = true;
+    // Static optimization: the cost Σ activation^exponent (OpenSim's activation_exponent, >= 1; 2 is the
+    // active-set QP, others are solved by Ipopt).
+    double activationExponent = 2;
     // A DOF whose largest |generalized force per newton| over all wires and loops is below this times the
     // frame's largest is unactuated (N m/N or N/N, relative).
     double unactuatedThreshold = 1e-9;
@@ -54,14 +58,15 @@ struct TensionFrame {
     Eigen::VectorXd activation;   // (numWires) static optimization; zero otherwise
     Eigen::VectorXd reserveForce; // (reserves) static optimization, N m or N
     Eigen::VectorXd residual;     // (nu) tau - (wires + loops + reserves); on unactuated DOFs tau itself
-    // (nu) LP infeasible frames: the phase-1 LP's smallest generalized force per DOF that makes the frame
-    // feasible; static optimization infeasible frames: the rows' residual; zero otherwise.
+    // (nu) infeasible frames (every method): the phase-1 LP's smallest generalized force per DOF that makes
+    // the frame feasible; zero otherwise.
     Eigen::VectorXd reserve;
     std::vector<char> unactuated; // (nu) 1 on DOFs no wire or loop reaches at this frame
     double torqueError = 0;       // Z = ½ |residual|² over every DOF, unactuated ones included
     double unactuatedResidual = 0;  // |tau| over the unactuated DOFs
     int activeWires = 0;          // wires pulling (above their lower bound)
     int iterations = 0;           // simplex pivots or active-set steps
+    bool usedIpopt = false;       // solved by Ipopt (the active set's fallback, or an exponent other than 2)
 };
 
 // One analysis per motion (and per thread): it keeps the solver's warm start from frame to frame and
@@ -86,6 +91,7 @@ public:
     const Eigen::VectorXd& getForcePerActivation() const { return forcePerActivation_; }
 
 private:
+    void calcReserveColumns();
     void markUnactuated();
     void calcForceMultipliers();
 
@@ -98,6 +104,7 @@ private:
     Eigen::MatrixXd J_;                  // (numWires x nu)
     Eigen::VectorXd forceMultiplier_;    // (numWires) static optimization
     Eigen::VectorXd forcePerActivation_; // (numWires) N
+    Eigen::MatrixXd reserveColumns_;     // (nu x reserves) generalized force per unit reserve force
     std::unique_ptr<LpSolver> lp_;
     std::unique_ptr<ActiveSetSolver> qp_;
     std::unique_ptr<StaticOptimization> so_;

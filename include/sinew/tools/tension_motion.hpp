@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 
+#include "sinew/core/coordinate_preprocessing.hpp"
 #include "sinew/core/model.hpp"
 #include "sinew/io/external_loads.hpp"
 #include "sinew/io/storage_file.hpp"
@@ -35,11 +36,12 @@ struct TensionMotionResult {
     StorageTable activations;  // static optimization: one column per wire; empty otherwise
     StorageTable reserves;     // static optimization with reserves: N m or N, one column per reserve
     // Per frame: status (0 optimal, 1 infeasible, 2 failed, 3 missing input), Z (N² m²), active_wires, iterations,
-    // unactuated_residual (|tau| on DOFs no wire reaches), then <coordinate>_residual and
+    // ipopt (1: solved by Ipopt), unactuated_residual (|tau| on DOFs no wire reaches), then <coordinate>_residual and
     // <coordinate>_reserve per DOF (see TensionFrame).
     StorageTable report;
     int flaggedFrames = 0;  // frames whose status is not optimal: the three counts below together
     int infeasibleFrames = 0, failedFrames = 0;
+    int ipoptFrames = 0;  // frames solved by Ipopt (report column ipopt = 1): the fallback, or exponent != 2
     // Indices into motion.rows of the rows in the time range whose coordinates were not all finite.
     std::vector<int> missingRows;
 };
@@ -49,5 +51,11 @@ struct TensionMotionResult {
 // are too few for the splines.
 TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& motion, const ExternalLoads* loads,
                                        const TensionMotionOptions& options);
+
+// States given frame by frame (e.g. an OpenSim states file, osim_states.hpp): q, u = states.qdot and
+// udot = states.qddot at states.times, used as they are (options' cut-off, time range and
+// accelerationsFromSpeedSplines do not apply). Throws sinew::Error when the sizes do not fit the model.
+TensionMotionResult runTensionAnalysis(const Model& model, const CoordinateTrajectory& states,
+                                       const ExternalLoads* loads, const TensionMotionOptions& options);
 
 }  // namespace sinew

@@ -1,0 +1,95 @@
+// Coupled coordinates and Simbody: OpenSim's inverse dynamics ignores constraints
+// (SimbodyMatterSubsystem::calcResidualForceIgnoringConstraints), so the dependent coordinate of a coupler
+// gets a generalized force of its own; sinew's inverse dynamics of a coupled model, along a motion that
+// satisfies the coupler, is checked against that Simbody call. The Simbody forward simulation refuses a
+// coupled model, since the plugin does not add the constraint.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sinew/core/coordinate_coupler.hpp"
+#include "sinew/core/error.hpp"
+#include "sinew/core/inverse_dynamics.hpp"
+#include "sinew/io/model_file.hpp"
+#include "sinew/simbody/forward_simulation.hpp"
+#include "sinew/simbody/simbody_model.hpp"
+#include "support/error_assertions.hpp"
+
+namespace sinew {
+namespace {
+
+// A knee whose forward slide follows its angle: knee_tx = 2 (0.01 knee^2 - 0.02 knee).
+const char* const kCoupledKnee = R"(sinew_model: 1
+name: coupled_knee
+links:
+  - {name: thigh, mass: 8, com: [0, -0.17, 0], inertia: [0.11, 0.03, 0.11, 0, 0, 0]}
+  - {name: shank, mass: 3.5, com: [0.01, -0.18, 0], inertia: [0.05, 0.005, 0.05, 0, 0, 0]}
+joints:
+  - {name: hip, type: pin, parent: ground, child: thigh, parent_point: [0, 1, 0], axis: [0, 0, 1]}
+  - name: knee
+    type: custom
+    parent: thigh
+    child: shank
+    parent_point: [0, -0.4, 0]
+    coordinates: [{name: knee_angle}, {name: knee_tx}]
+    transform:
+      rotation1: {axis: [0, 0, 1], coordinate: knee_angle}
+      rotation2: {axis: [1, 0, 0]}
+      rotation3: {axis: [0, 1, 0]}
+      translation1: {axis: [1, 0, 0], coordinate: knee_tx}
+couplers:
+  - {name: knee_tx_coupler, dependent: knee_tx, independent: knee_angle, scale_factor: 2,
+     function: {type: polynomial, coefficients: [0.01, -0.02, 0]}}
+)";
+
+TEST(CoordinateCouplerSimbody, InverseDynamicsGivesTheDependentCoordinateItsOwnForceAsOpenSim) {
+    const Model model = readModelText(kCoupledKnee, "coupled_knee.yaml");
+    ASSERT_EQ(model.getNumCouplers(), 1);
+    const int hip = model.findCoordinateIndex("hip"), knee = model.findCoordinateIndex("knee_angle"),
+              tx = model.findCoordinateIndex("knee_tx");
+    const SimbodyModel simbody(model, {"", true, false});
+    const SimTK::MultibodySystem& system = simbody.getSystem();
+    Data data(model);
+    Eigen::VectorXd tau(model.getNumU());
+    const std::vector<SpatialVector> noLoads(static_cast<std::size_t>(model.getNumLinks()), SpatialVector::Zero());
+    double worst = 0, dependentForce = 0;
+    for (double t : {0.0, 0.3, 0.7, 1.1}) {
+        // hip(t), knee(t) and the coupled knee_tx(t) with its rate and acceleration by the chain rule.
+        Eigen::VectorXd q(3), u(3), udot(3);
+        q[hip] = 0.4 * std::sin(2 * t);
+        u[hip] = 0.8 * std::cos(2 * t);
+        udot[hip] = -1.6 * std::sin(2 * t);
+        q[knee] = -0.8 + 0.6 * std::sin(3 * t);
+        u[knee] = 1.8 * std::cos(3 * t);
+        udot[knee] = -5.4 * std::sin(3 * t);
+        applyCoordinateCouplers(model, q);
+        EXPECT_NEAR(q[tx], 2 * (0.01 * q[knee] * q[knee] - 0.02 * q[knee]), 1e-16);
+        u[tx] = 2 * (0.02 * q[knee] - 0.02) * u[knee];
+        udot[tx] = 2 * (0.02 * u[knee] * u[knee] + (0.02 * q[knee] - 0.02) * udot[knee]);
+        calcInverseDynamics(model, data, q, u, udot, noLoads, tau);
+
+        SimTK::State state = simbody.makeState(q, u);
+        system.realize(state, SimTK::Stage::Dynamics);  // gravity, as a force element
+        SimTK::Vector residual;
+        simbody.getMatter().calcResidualForceIgnoringConstraints(
+            state, system.getMobilityForces(state, SimTK::Stage::Dynamics),
+            system.getRigidBodyForces(state, SimTK::Stage::Dynamics), toSimTK(udot), residual);
+        const Eigen::VectorXd reference = toEigen(residual);
+        worst = std::max(worst, (tau - reference).lpNorm<Eigen::Infinity>() / std::max(1.0, reference.lpNorm<Eigen::Infinity>()));
+        dependentForce = std::max(dependentForce, std::abs(tau[tx]));
+    }
+    EXPECT_LT(worst, 1e-10);
+    // The slide carries the shank's weight and inertia along x: a force of its own, not folded into the knee.
+    EXPECT_GT(dependentForce, 0.1) << "N";
+}
+
+TEST(CoordinateCouplerSimbody, ForwardSimulationRefusesCoupledModels) {
+    const Model model = readModelText(kCoupledKnee, "coupled_knee.yaml");
+    ForwardSimulationOptions options;
+    options.duration = 0.01;
+    EXPECT_TRUE(test::throwsErrorAt([&] { simulateForward(model, options, nullptr); }, "model 'coupled_knee'",
+                                    {"Simbody", "does not enforce coordinate couplers", "knee_tx_coupler"}, ""));
+}
+
+}  // namespace
+}  // namespace sinew
