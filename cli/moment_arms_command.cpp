@@ -4,6 +4,7 @@
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
+#include "sinew/core/coordinate_coupler.hpp"
 #include "sinew/core/data.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/kinematics.hpp"
@@ -55,7 +56,9 @@ int runMomentArms(const std::vector<std::string>& args) {
     Eigen::MatrixXd R(model.getNumWires(), model.getNumU());
     Progress progress("moment arms", static_cast<double>(samples.times.size()));
     for (Eigen::Index row = 0; row < samples.times.size(); ++row) {
-        const Eigen::VectorXd q = samples.q.row(row).transpose();
+        // As OpenSim's AnalyzeTool, which assembles each frame: dependent coordinates follow their couplers.
+        Eigen::VectorXd q = samples.q.row(row).transpose();
+        applyCoordinateCouplers(model, q);
         calcPositionKinematics(model, data, q);
         calcWirePaths(model, data);
         calcMomentArms(model, data, R);

@@ -99,6 +99,17 @@ void projectOntoJoint(const Joint& joint, const Data& data, int link, const Eige
     }
 }
 
+JointMotion calcJointMotion_G(const Joint& joint, const Data& data, int link, const Eigen::Vector3d& p_ref) {
+    // By virtual work, H^T F for unit spatial forces F (about p_ref) reads H row by row.
+    JointMotion H_G(6, joint.nu);
+    for (int k = 0; k < 6; ++k) {
+        double row[6];
+        projectOntoJoint(joint, data, link, p_ref, SpatialVector::Unit(k), row);
+        for (int c = 0; c < joint.nu; ++c) H_G(k, c) = row[c];
+    }
+    return H_G;
+}
+
 void calcGeneralizedForcesFromLinkForces(const Model& model, Data& data, Eigen::Ref<Eigen::VectorXd> tau) {
     for (int i = model.getNumLinks() - 1; i >= 0; --i) {
         const Joint& joint = model.getJoint(i);

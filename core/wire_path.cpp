@@ -260,13 +260,7 @@ void calcLengthGradientNumerically(const Model& model, Data& data, int w) {
     for (int link : wire.supportLinks) {
         const Joint& joint = model.getJoint(link);
         const std::size_t b = static_cast<std::size_t>(link);
-        // The joint's motion subspace in ground about its centre, column by column: H^T of unit forces.
-        Eigen::Matrix<double, 6, 6> H_G;
-        for (int k = 0; k < 6; ++k) {
-            double column[6];
-            projectOntoJoint(joint, data, link, data.p_GM[b], SpatialVector::Unit(k), column);
-            for (int c = 0; c < joint.nu; ++c) H_G(k, c) = column[c];
-        }
+        const JointMotion H_G = calcJointMotion_G(joint, data, link, data.p_GM[b]);
         for (int c = 0; c < joint.nu; ++c) {
             // Coordinates are rates of their own only where nq == nu (not quaternions).
             const int qIndex = joint.nq == joint.nu ? joint.qStart + c : -1;

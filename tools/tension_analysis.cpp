@@ -1,10 +1,12 @@
 #include "sinew/tools/tension_analysis.hpp"
 
+#include <Eigen/LU>
 #include <cmath>
 
 #include "sinew/core/body_actuator.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
+#include "sinew/core/kinematics.hpp"
 #include "sinew/core/thelen_muscle.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
@@ -121,6 +123,9 @@ TensionAnalysis::TensionAnalysis(const Model& model, TensionAnalysisOptions opti
     frame_.residual.setZero(nu);
     frame_.reserve.setZero(nu);
     frame_.unactuated.assign(static_cast<std::size_t>(nu), 0);
+    for (int link = 0; link < model.getNumLinks(); ++link)
+        if (model.getLink(link).isVirtual && model.getJoint(link).parent == kGround) virtualLinksOnGround_.push_back(link);
+    rigidMotion_.setZero(nu);
 }
 
 void TensionAnalysis::reset() {
@@ -141,6 +146,31 @@ void TensionAnalysis::calcReserveColumns() {
 // A DOF's row of A (and, for static optimization, of the reserves' columns) is the generalized force per
 // unit of each variable; a row that is zero to rounding (a floating root under internal wire forces and no
 // residual actuators) cannot be distributed, so its target is set to zero and its tau reported as residual.
+// A DOF of a joint on ground moves the whole body, and the virtual links hanging from ground must move
+// with it for no wire to change length: wires through a virtual link reach that DOF's row (they pull the
+// body but not the virtual link) although, once the virtual links' equilibrium rows hold, they cannot move
+// the body as a whole. What the wires and loops do along that rigid motion of everything is what actuates
+// the DOF: the largest |column . r| with r the motion's u.
+double TensionAnalysis::calcRigidMotionActuation(int rootLink, int mobility) {
+    const Joint& joint = model_.getJoint(rootLink);
+    const Eigen::Vector3d& p_ref = data_.p_GM[static_cast<std::size_t>(rootLink)];
+    const SpatialVector twist = calcJointMotion_G(joint, data_, rootLink, p_ref).col(mobility);
+    rigidMotion_.setZero();
+    rigidMotion_[joint.uStart + mobility] = 1;
+    for (int link : virtualLinksOnGround_) {
+        const Joint& free = model_.getJoint(link);
+        const JointMotion H = calcJointMotion_G(free, data_, link, p_ref);
+        rigidMotion_.segment(free.uStart, free.nu) = Eigen::FullPivLU<JointMotion>(H).solve(twist);
+    }
+    double actuation = 0;
+    for (Eigen::Index k = 0; k < problem_.A.outerSize(); ++k) {
+        double along = 0;
+        for (Eigen::SparseMatrix<double>::InnerIterator it(problem_.A, k); it; ++it) along += it.value() * rigidMotion_[it.row()];
+        actuation = std::fmax(actuation, std::fabs(along));
+    }
+    return actuation;
+}
+
 void TensionAnalysis::markUnactuated() {
     const Eigen::Index nu = problem_.getNumRows();
     Eigen::VectorXd& rowSize = frame_.reserve;  // workspace, overwritten after the solve
@@ -148,6 +178,12 @@ void TensionAnalysis::markUnactuated() {
     for (Eigen::Index k = 0; k < problem_.A.outerSize(); ++k)
         for (Eigen::SparseMatrix<double>::InnerIterator it(problem_.A, k); it; ++it)
             rowSize[it.row()] = std::fmax(rowSize[it.row()], std::fabs(it.value()));
+    if (!virtualLinksOnGround_.empty())
+        for (int link = 0; link < model_.getNumLinks(); ++link) {
+            const Joint& joint = model_.getJoint(link);
+            if (joint.parent != kGround || model_.getLink(link).isVirtual) continue;
+            for (int c = 0; c < joint.nu; ++c) rowSize[joint.uStart + c] = calcRigidMotionActuation(link, c);
+        }
     if (so_)
         for (Eigen::Index r = 0; r < reserveColumns_.cols(); ++r)
             for (Eigen::Index i = 0; i < nu; ++i) rowSize[i] = std::fmax(rowSize[i], std::fabs(reserveColumns_(i, r)));

@@ -13,6 +13,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
+#include "sinew/core/random_model.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
 #include "sinew/tools/model_loading.hpp"
@@ -143,6 +144,41 @@ TEST(TensionAnalysis, FeasibleFramesMeetEachMethodsPromise) {
         EXPECT_LT((so.tension - 2000 * so.activation).norm(), 1e-9 * f0.norm()) << "frame " << frame;
         EXPECT_LE(so.activation.squaredNorm(), (f0 / 2000).squaredNorm() * (1 + 1e-9)) << "frame " << frame;
         EXPECT_TRUE((so.activation.array() >= -1e-9).all() && (so.activation.array() <= 1 + 1e-9).all());
+    }
+}
+
+// A floating body whose forked wires meet on virtual links: those wires reach the free root's rows (they
+// pull on the bones, not on the virtual links hanging from ground), but with the virtual links in
+// equilibrium no wire moves the body as a whole. The root's six DOFs are unactuated, their inverse-dynamics
+// torques reported as the frame's residual, and every other DOF left to the wires.
+TEST(TensionAnalysis, FreeRootStaysUnactuatedWithVirtualLinks) {
+    RandomModelOptions modelOptions;
+    modelOptions.numLinks = 8;
+    modelOptions.rootJoint = JointType::Free;
+    modelOptions.numWires = 30;
+    modelOptions.numVirtualLinks = 2;
+    modelOptions.seed = 5;
+    const Model model = generateRandomModel(modelOptions);
+    TensionAnalysisOptions options;
+    options.maxTension = Eigen::VectorXd::Constant(model.getNumWires(), 2000);
+    options.useMusclePhysiology = false;
+    TensionAnalysis analysis(model, options);
+    const Joint& root = model.getJoint(0);
+    ASSERT_EQ(root.nu, 6);
+    std::mt19937 rng(3);
+    const std::vector<SpatialVector> noLoads(static_cast<std::size_t>(model.getNumLinks()), SpatialVector::Zero());
+    for (int frame = 0; frame < 5; ++frame) {
+        const Eigen::VectorXd q = generateRandomCoordinates(model, rng), u = generateRandomSpeeds(model, rng);
+        const Eigen::VectorXd udot = generateRandomSpeeds(model, rng);
+        const TensionFrame& result = analysis.calcFrame(q, u, udot, noLoads);
+        Data data(model);
+        Eigen::VectorXd tau(model.getNumU());
+        calcInverseDynamics(model, data, q, u, udot, noLoads, tau);
+        for (int i = 0; i < model.getNumU(); ++i) {
+            const bool onRoot = i >= root.uStart && i < root.uStart + root.nu;
+            EXPECT_EQ(result.unactuated[static_cast<std::size_t>(i)], onRoot ? 1 : 0) << "DOF " << i << ", frame " << frame;
+        }
+        EXPECT_NEAR(result.unactuatedResidual, tau.segment(root.uStart, 6).norm(), 1e-9 * tau.norm()) << "frame " << frame;
     }
 }
 

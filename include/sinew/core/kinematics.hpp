@@ -27,6 +27,11 @@ void calcGeneralizedForcesFromLinkForces(const Model& model, Data& data, Eigen::
 void projectOntoJoint(const Joint& joint, const Data& data, int link, const Eigen::Vector3d& p_ref,
                       const SpatialVector& F_G, double* tauJoint);
 
+// The joint's motion subspace in ground axes: column c (of joint.nu) is the twist [angular velocity;
+// velocity of the point p_ref] that a unit speed of mobility c gives the link relative to its parent.
+// Reads what projectOntoJoint reads.
+JointMotion calcJointMotion_G(const Joint& joint, const Data& data, int link, const Eigen::Vector3d& p_ref);
+
 // Adds a link's spatial force (moment about its origin) to its parent's (moment about the parent's origin).
 void addToParent(const Model& model, Data& data, int link);
 

@@ -93,6 +93,7 @@ public:
 private:
     void calcReserveColumns();
     void markUnactuated();
+    double calcRigidMotionActuation(int rootLink, int mobility);
     void calcForceMultipliers();
 
     const Model& model_;
@@ -105,6 +106,8 @@ private:
     Eigen::VectorXd forceMultiplier_;    // (numWires) static optimization
     Eigen::VectorXd forcePerActivation_; // (numWires) N
     Eigen::MatrixXd reserveColumns_;     // (nu x reserves) generalized force per unit reserve force
+    std::vector<int> virtualLinksOnGround_;  // virtual links whose joints hang from ground
+    Eigen::VectorXd rigidMotion_;            // (nu) workspace: u moving the body and those virtual links rigidly
     std::unique_ptr<LpSolver> lp_;
     std::unique_ptr<ActiveSetSolver> qp_;
     std::unique_ptr<StaticOptimization> so_;
