@@ -1,12 +1,9 @@
 #include <cstdio>
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
-#include "sinew/core/error.hpp"
 #include "sinew/io/tool_setup.hpp"
 #include "sinew/tools/inverse_dynamics_tool.hpp"
 #include "sinew/tools/static_optimization_tool.hpp"
@@ -22,14 +19,6 @@ const char* kUsage =
     "  and sinew's per-frame _report.sto).\n"
     "  -o DIR   write the results here instead of the setup's results_directory\n";
 
-std::string readText(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open the setup file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 }  // namespace
 
 int runRunTool(const std::vector<std::string>& args) {
@@ -41,27 +30,24 @@ int runRunTool(const std::vector<std::string>& args) {
     }
     if (reader.helpShown()) return 0;
     if (setupPath.empty()) return reader.failWithUsage();
-    const std::string text = readText(setupPath);
     const auto printNote = [](const std::string& note) { std::printf("%s\n", note.c_str()); };
     std::optional<Progress> progress;
     const auto onFrame = [&](int frame, int frames) {
         if (!progress) progress.emplace("frames", frames);
         progress->update(frame);
     };
-    if (text.find("<InverseDynamicsTool") != std::string::npos) {
+    if (readToolType(setupPath) == ToolType::InverseDynamics) {
         const InverseDynamicsSetup setup = readInverseDynamicsSetup(setupPath);
         const std::string written = runInverseDynamicsTool(setup, outputDir, printNote, onFrame);
         if (progress) progress->finish();
         std::printf("InverseDynamicsTool '%s' -> %s\n", setup.name.c_str(), written.c_str());
-    } else if (text.find("<AnalyzeTool") != std::string::npos) {
+    } else {
         const AnalyzeSetup setup = readAnalyzeSetup(setupPath);
         const std::vector<std::string> written = runStaticOptimizationTool(setup, outputDir, printNote, onFrame);
         if (progress) progress->finish();
         std::printf("AnalyzeTool '%s' (StaticOptimization) ->", setup.name.c_str());
         for (const std::string& file : written) std::printf(" %s", file.c_str());
         std::printf("\n");
-    } else {
-        throw Error(setupPath + ": not a tool sinew runs (expected an InverseDynamicsTool or AnalyzeTool setup)");
     }
     return 0;
 }

@@ -267,9 +267,14 @@ void calcLengthGradientNumerically(const Model& model, Data& data, int w) {
             gradient[joint.uStart + c] = difference(Displacement{link, H_G.col(c), data.p_GM[b], qIndex});
         }
     }
-    // Coordinates that move a point in its link without moving the link.
-    for (const WirePointMotion& m : wire.motions)
-        if (gradient[m.u] == 0) gradient[m.u] = difference(Displacement{kGround, SpatialVector::Zero(), Eigen::Vector3d::Zero(), m.q});
+    // Coordinates that move a point in its link without moving any of the wire's links.
+    for (const WirePointMotion& m : wire.motions) {
+        const bool done = std::any_of(wire.supportLinks.begin(), wire.supportLinks.end(), [&](int link) {
+            const Joint& joint = model.getJoint(link);
+            return m.u >= joint.uStart && m.u < joint.uStart + joint.nu;
+        });
+        if (!done) gradient[m.u] = difference(Displacement{kGround, SpatialVector::Zero(), Eigen::Vector3d::Zero(), m.q});
+    }
 }
 
 }  // namespace

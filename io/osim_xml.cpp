@@ -82,6 +82,13 @@ const Element& XmlDocument::getObject(const char* type) const {
     return *object;
 }
 
+const Element& XmlDocument::getFirstObject() const {
+    const Element* root = document_.RootElement();
+    const Element* object = root->FirstChildElement();
+    if (!object) fail(*root, "holds no object");
+    return *object;
+}
+
 std::string XmlDocument::where(const Element& element) const {
     return path_ + ":" + std::to_string(element.GetLineNum());
 }

@@ -26,6 +26,8 @@ public:
     int getVersion() const { return version_; }  // the OpenSimDocument Version attribute, 0 when absent
     // The one child of <OpenSimDocument> of the given type (e.g. "Model"); throws when there is none.
     const Element& getObject(const char* type) const;
+    // The first child of <OpenSimDocument>, whatever its type; throws when there is none.
+    const Element& getFirstObject() const;
 
     std::string where(const Element& element) const;  // "file:line"
     // Throws ModelError at the element's line: "<Type name='x'>: message".

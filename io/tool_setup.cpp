@@ -53,6 +53,15 @@ StaticOptimizationAnalysis readStaticOptimization(const XmlDocument& doc, const 
 
 }  // namespace
 
+ToolType readToolType(const std::string& path) {
+    const XmlDocument doc(path);
+    const Element& tool = doc.getFirstObject();
+    const std::string type = tool.Name();
+    if (type == "InverseDynamicsTool") return ToolType::InverseDynamics;
+    if (type == "AnalyzeTool") return ToolType::Analyze;
+    doc.fail(tool, "not a tool sinew runs (expected an InverseDynamicsTool or AnalyzeTool setup)");
+}
+
 InverseDynamicsSetup readInverseDynamicsSetup(const std::string& path) {
     const XmlDocument doc(path);
     const Element& tool = doc.getObject("InverseDynamicsTool");

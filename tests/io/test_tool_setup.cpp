@@ -120,6 +120,26 @@ TEST(ToolSetup, ForceSetFileAndAnalyzeToolReferencingIt) {
     EXPECT_EQ(analyze.unsupported[0].type, "Kinematics");
 }
 
+// The tool is the document's object, not any text in the file: an AnalyzeTool whose comment mentions an
+// InverseDynamicsTool is an AnalyzeTool; a tool sinew does not run is refused at its line.
+TEST(ToolSetup, ToolTypeIsTheDocumentsObject) {
+    const std::string analyze = writeSetup("analyze_with_comment.xml", R"(<OpenSimDocument Version="40000">
+<!-- made from <InverseDynamicsTool> results -->
+<AnalyzeTool name="so"><model_file>m.osim</model_file></AnalyzeTool></OpenSimDocument>
+)");
+    EXPECT_EQ(readToolType(analyze), ToolType::Analyze);
+    const std::string id = writeSetup("id_type.xml", R"(<OpenSimDocument Version="40000">
+<InverseDynamicsTool name="id"/></OpenSimDocument>
+)");
+    EXPECT_EQ(readToolType(id), ToolType::InverseDynamics);
+    const std::string scale = writeSetup("scale.xml", R"(<OpenSimDocument Version="40000">
+
+<ScaleTool name="subject"/></OpenSimDocument>
+)");
+    EXPECT_TRUE(test::throwsErrorAt([&] { readToolType(scale); }, scale + ":3: ",
+                                    {"ScaleTool", "InverseDynamicsTool or AnalyzeTool"}, "a ScaleTool setup"));
+}
+
 TEST(ToolSetup, BadSetups) {
     const std::string reversed = writeSetup("reversed.xml", R"(<OpenSimDocument Version="30000">
 <InverseDynamicsTool name="id">

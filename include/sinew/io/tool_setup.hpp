@@ -73,6 +73,11 @@ struct OsimForceSet {
 };
 
 // Each throws ModelError at "file:line" naming the element and what was expected.
+// Which tool an OpenSim setup file holds: the type of its <OpenSimDocument>'s object. Throws at the
+// object's line for any other tool.
+enum class ToolType { InverseDynamics, Analyze };
+ToolType readToolType(const std::string& path);
+
 InverseDynamicsSetup readInverseDynamicsSetup(const std::string& path);
 AnalyzeSetup readAnalyzeSetup(const std::string& path);
 OsimForceSet readForceSetFile(const std::string& path);
