@@ -1,5 +1,6 @@
 #include "sinew/tensions/static_optimization.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -39,6 +40,44 @@ StaticOptimization::StaticOptimization(StaticOptimizationSettings settings, Acti
                         "], expected a finite optimal force > 0 and min <= max");
 }
 
+bool StaticOptimization::hasPatternOf(const DistributionProblem& wireProblem, bool denseReserves) const {
+    const Eigen::SparseMatrix<double>& A = wireProblem.A;
+    return denseReserves == denseReserves_ && A.isCompressed() && A.rows() == wirePattern_.rows() &&
+           A.cols() == wirePattern_.cols() && A.nonZeros() == wirePattern_.nonZeros() &&
+           std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1, wirePattern_.outerIndexPtr()) &&
+           std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), wirePattern_.innerIndexPtr());
+}
+
+void StaticOptimization::buildPattern(const DistributionProblem& wireProblem, bool denseReserves) {
+    const int numWires = static_cast<int>(settings_.maxIsometricForce.size());
+    const int numReserves = static_cast<int>(settings_.reserves.size());
+    const int rows = wireProblem.getNumRows(), numBounded = numWires + numReserves;
+    wirePattern_ = wireProblem.A;
+    wirePattern_.makeCompressed();
+    denseReserves_ = denseReserves;
+    // Each frame copies the wire problem's values column by column into problem_.A, whose rows are sorted.
+    for (int j = 0; j < wirePattern_.cols(); ++j) {
+        const auto* rowIndex = wirePattern_.innerIndexPtr();
+        if (!std::is_sorted(rowIndex + wirePattern_.outerIndexPtr()[j], rowIndex + wirePattern_.outerIndexPtr()[j + 1]))
+            throw Error("static optimization: column " + std::to_string(j) + " of the wire problem has unsorted rows");
+    }
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int j = 0; j < wirePattern_.cols(); ++j)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(wirePattern_, j); it; ++it)
+            entries.emplace_back(it.row(), j < numWires ? j : j + numReserves, 0.0);
+    for (int r = 0; r < numReserves; ++r) {
+        const ReserveActuator& reserve = settings_.reserves[static_cast<std::size_t>(r)];
+        if (!(denseReserves && reserve.body)) {
+            entries.emplace_back(reserve.dof, numWires + r, 0.0);
+            continue;
+        }
+        for (int i = 0; i < rows; ++i) entries.emplace_back(i, numWires + r, 0.0);
+    }
+    problem_.A.resize(rows, numBounded + wireProblem.numFree);
+    problem_.A.setFromTriplets(entries.begin(), entries.end());
+    problem_.A.makeCompressed();
+}
+
 void StaticOptimization::solve(const DistributionProblem& wireProblem, const Eigen::VectorXd& forceMultiplier,
                                StaticOptimizationResult& result, const Eigen::MatrixXd* reserveColumns) {
     const int numWires = static_cast<int>(settings_.maxIsometricForce.size());
@@ -64,30 +103,25 @@ void StaticOptimization::solve(const DistributionProblem& wireProblem, const Eig
                         std::to_string(forceMultiplier[w]) + ", expected a finite value >= 0");
 
     // Columns [wires scaled to activations; reserves; free], all rows exact, Σ |x|^p as Σ (p / p) |x|^p
-    // (for p = 2 the QP's ½ Σ 2 x²).
+    // (for p = 2 the QP's ½ Σ 2 x²). The pattern is built once; each frame writes the values in its order.
     const int numBounded = numWires + numReserves;
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(static_cast<std::size_t>(wireProblem.A.nonZeros() + numReserves));
+    if (!hasPatternOf(wireProblem, reserveColumns != nullptr)) buildPattern(wireProblem, reserveColumns != nullptr);
+    double* value = problem_.A.valuePtr();
     for (int w = 0; w < numWires; ++w) {
         const double force = settings_.maxIsometricForce[w] * forceMultiplier[w];
-        for (Eigen::SparseMatrix<double>::InnerIterator it(wireProblem.A, w); it; ++it)
-            entries.emplace_back(it.row(), w, it.value() * force);
+        for (Eigen::SparseMatrix<double>::InnerIterator it(wireProblem.A, w); it; ++it) *value++ = it.value() * force;
     }
     for (int r = 0; r < numReserves; ++r) {
-        const double optimalForce = settings_.reserves[static_cast<std::size_t>(r)].optimalForce;
-        if (!reserveColumns) {
-            entries.emplace_back(settings_.reserves[static_cast<std::size_t>(r)].dof, numWires + r, optimalForce);
-            continue;
-        }
-        for (int i = 0; i < rows; ++i)
-            if ((*reserveColumns)(i, r) != 0) entries.emplace_back(i, numWires + r, (*reserveColumns)(i, r) * optimalForce);
+        const ReserveActuator& reserve = settings_.reserves[static_cast<std::size_t>(r)];
+        if (!reserveColumns)
+            *value++ = reserve.optimalForce;
+        else if (!reserve.body)
+            *value++ = (*reserveColumns)(reserve.dof, r) * reserve.optimalForce;
+        else
+            for (int i = 0; i < rows; ++i) *value++ = (*reserveColumns)(i, r) * reserve.optimalForce;
     }
     for (int k = 0; k < numFree; ++k)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(wireProblem.A, numWires + k); it; ++it)
-            entries.emplace_back(it.row(), numBounded + k, it.value());
-    problem_.A.resize(rows, numBounded + numFree);
-    problem_.A.setFromTriplets(entries.begin(), entries.end());
-    problem_.A.makeCompressed();
+        for (Eigen::SparseMatrix<double>::InnerIterator it(wireProblem.A, numWires + k); it; ++it) *value++ = it.value();
     problem_.numFree = numFree;
     problem_.lower.resize(numBounded);
     problem_.upper.resize(numBounded);

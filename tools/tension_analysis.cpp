@@ -1,6 +1,5 @@
 #include "sinew/tools/tension_analysis.hpp"
 
-#include <Eigen/LU>
 #include <cmath>
 
 #include "sinew/core/body_actuator.hpp"
@@ -126,6 +125,8 @@ TensionAnalysis::TensionAnalysis(const Model& model, TensionAnalysisOptions opti
     for (int link = 0; link < model.getNumLinks(); ++link)
         if (model.getLink(link).isVirtual && model.getJoint(link).parent == kGround) virtualLinksOnGround_.push_back(link);
     rigidMotion_.setZero(nu);
+    unbalanced_.setZero(nu);
+    virtualLinkMotion_.resize(virtualLinksOnGround_.size());
 }
 
 void TensionAnalysis::reset() {
@@ -150,31 +151,39 @@ void TensionAnalysis::calcReserveColumns() {
 // with it for no wire to change length: wires through a virtual link reach that DOF's row (they pull the
 // body but not the virtual link) although, once the virtual links' equilibrium rows hold, they cannot move
 // the body as a whole. What the wires and loops do along that rigid motion of everything is what actuates
-// the DOF: the largest |column . r| with r the motion's u.
-double TensionAnalysis::calcRigidMotionActuation(int rootLink, int mobility) {
+// the DOF: the largest |column . r| with r the motion's u, into rowSize. What no wire can balance there is
+// r . tau: the equilibrium rows' targets (loads on virtual links, if any) move with the body.
+void TensionAnalysis::judgeByRigidMotion(int rootLink, Eigen::VectorXd& rowSize) {
     const Joint& joint = model_.getJoint(rootLink);
     const Eigen::Vector3d& p_ref = data_.p_GM[static_cast<std::size_t>(rootLink)];
-    const SpatialVector twist = calcJointMotion_G(joint, data_, rootLink, p_ref).col(mobility);
-    rigidMotion_.setZero();
-    rigidMotion_[joint.uStart + mobility] = 1;
-    for (int link : virtualLinksOnGround_) {
-        const Joint& free = model_.getJoint(link);
-        const JointMotion H = calcJointMotion_G(free, data_, link, p_ref);
-        rigidMotion_.segment(free.uStart, free.nu) = Eigen::FullPivLU<JointMotion>(H).solve(twist);
+    const JointMotion H_root = calcJointMotion_G(joint, data_, rootLink, p_ref);
+    for (std::size_t v = 0; v < virtualLinksOnGround_.size(); ++v) {
+        const int link = virtualLinksOnGround_[v];
+        virtualLinkMotion_[v].compute(calcJointMotion_G(model_.getJoint(link), data_, link, p_ref));
     }
-    double actuation = 0;
-    for (Eigen::Index k = 0; k < problem_.A.outerSize(); ++k) {
-        double along = 0;
-        for (Eigen::SparseMatrix<double>::InnerIterator it(problem_.A, k); it; ++it) along += it.value() * rigidMotion_[it.row()];
-        actuation = std::fmax(actuation, std::fabs(along));
+    for (int c = 0; c < joint.nu; ++c) {
+        rigidMotion_.setZero();
+        rigidMotion_[joint.uStart + c] = 1;
+        for (std::size_t v = 0; v < virtualLinksOnGround_.size(); ++v) {
+            const Joint& free = model_.getJoint(virtualLinksOnGround_[v]);
+            rigidMotion_.segment(free.uStart, free.nu) = virtualLinkMotion_[v].solve(SpatialVector(H_root.col(c)));
+        }
+        unbalanced_[joint.uStart + c] = rigidMotion_.dot(frame_.tau);
+        double actuation = 0;
+        for (Eigen::Index k = 0; k < problem_.A.outerSize(); ++k) {
+            double along = 0;
+            for (Eigen::SparseMatrix<double>::InnerIterator it(problem_.A, k); it; ++it) along += it.value() * rigidMotion_[it.row()];
+            actuation = std::fmax(actuation, std::fabs(along));
+        }
+        rowSize[joint.uStart + c] = actuation;
     }
-    return actuation;
 }
 
 void TensionAnalysis::markUnactuated() {
     const Eigen::Index nu = problem_.getNumRows();
     Eigen::VectorXd& rowSize = frame_.reserve;  // workspace, overwritten after the solve
     rowSize.setZero();
+    unbalanced_ = frame_.tau;
     for (Eigen::Index k = 0; k < problem_.A.outerSize(); ++k)
         for (Eigen::SparseMatrix<double>::InnerIterator it(problem_.A, k); it; ++it)
             rowSize[it.row()] = std::fmax(rowSize[it.row()], std::fabs(it.value()));
@@ -182,7 +191,7 @@ void TensionAnalysis::markUnactuated() {
         for (int link = 0; link < model_.getNumLinks(); ++link) {
             const Joint& joint = model_.getJoint(link);
             if (joint.parent != kGround || model_.getLink(link).isVirtual) continue;
-            for (int c = 0; c < joint.nu; ++c) rowSize[joint.uStart + c] = calcRigidMotionActuation(link, c);
+            judgeByRigidMotion(link, rowSize);
         }
     if (so_)
         for (Eigen::Index r = 0; r < reserveColumns_.cols(); ++r)
@@ -193,8 +202,8 @@ void TensionAnalysis::markUnactuated() {
         const bool unactuated = !(rowSize[i] > threshold);
         frame_.unactuated[static_cast<std::size_t>(i)] = unactuated;
         if (unactuated) {
-            frame_.unactuatedResidual += frame_.tau[i] * frame_.tau[i];
-            problem_.target[i] = 0;
+            frame_.unactuatedResidual += unbalanced_[i] * unbalanced_[i];
+            problem_.target[i] = frame_.tau[i] - unbalanced_[i];
         }
     }
     frame_.unactuatedResidual = std::sqrt(frame_.unactuatedResidual);

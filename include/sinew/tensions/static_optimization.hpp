@@ -76,7 +76,14 @@ private:
     ActiveSetSolver solver_;
     double infeasibilityTolerance_;
     std::unique_ptr<IpoptSolver> ipopt_;  // p != 2
-    DistributionProblem problem_;  // the activation problem, rebuilt in place each frame
+    DistributionProblem problem_;  // the activation problem, its values rewritten each frame
+
+    // problem_.A's pattern is the wire problem's (kept in wirePattern_) and each reserve's DOF, or, for a
+    // body reserve when frames give reserve columns, every row; rebuilt only when that changes.
+    bool hasPatternOf(const DistributionProblem& wireProblem, bool denseReserves) const;
+    void buildPattern(const DistributionProblem& wireProblem, bool denseReserves);
+    Eigen::SparseMatrix<double> wirePattern_;
+    bool denseReserves_ = false;
 };
 
 }  // namespace sinew

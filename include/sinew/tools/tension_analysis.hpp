@@ -7,6 +7,7 @@
 // their generalized force is the frame's unactuated residual, reported, never hidden; with measured
 // external loads it is what the loads leave unexplained.
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <memory>
 #include <string>
 #include <vector>
@@ -57,13 +58,16 @@ struct TensionFrame {
     Eigen::VectorXd tension;      // (numWires) N
     Eigen::VectorXd activation;   // (numWires) static optimization; zero otherwise
     Eigen::VectorXd reserveForce; // (reserves) static optimization, N m or N
-    Eigen::VectorXd residual;     // (nu) tau - (wires + loops + reserves); on unactuated DOFs tau itself
+    // (nu) tau - (wires + loops + reserves); on unactuated DOFs tau itself, except a root DOF of a model with
+    // virtual links: there, what moving the body and its virtual links rigidly needs (loads on virtual links,
+    // if any, are balanced through their wires).
+    Eigen::VectorXd residual;
     // (nu) infeasible frames (every method): the phase-1 LP's smallest generalized force per DOF that makes
     // the frame feasible; zero otherwise.
     Eigen::VectorXd reserve;
     std::vector<char> unactuated; // (nu) 1 on DOFs no wire or loop reaches at this frame
     double torqueError = 0;       // Z = ½ |residual|² over every DOF, unactuated ones included
-    double unactuatedResidual = 0;  // |tau| over the unactuated DOFs
+    double unactuatedResidual = 0;  // |residual| over the unactuated DOFs
     int activeWires = 0;          // wires pulling (above their lower bound)
     int iterations = 0;           // simplex pivots or active-set steps
     bool usedIpopt = false;       // solved by Ipopt (the active set's fallback, or an exponent other than 2)
@@ -93,7 +97,7 @@ public:
 private:
     void calcReserveColumns();
     void markUnactuated();
-    double calcRigidMotionActuation(int rootLink, int mobility);
+    void judgeByRigidMotion(int rootLink, Eigen::VectorXd& rowSize);
     void calcForceMultipliers();
 
     const Model& model_;
@@ -107,7 +111,9 @@ private:
     Eigen::VectorXd forcePerActivation_; // (numWires) N
     Eigen::MatrixXd reserveColumns_;     // (nu x reserves) generalized force per unit reserve force
     std::vector<int> virtualLinksOnGround_;  // virtual links whose joints hang from ground
+    std::vector<Eigen::FullPivLU<JointMotion>> virtualLinkMotion_;  // their motion subspaces, factorized per frame
     Eigen::VectorXd rigidMotion_;            // (nu) workspace: u moving the body and those virtual links rigidly
+    Eigen::VectorXd unbalanced_;             // (nu) per DOF, the generalized force no wire could balance if unactuated
     std::unique_ptr<LpSolver> lp_;
     std::unique_ptr<ActiveSetSolver> qp_;
     std::unique_ptr<StaticOptimization> so_;
