@@ -10,12 +10,11 @@
 #include "sinew/core/coordinate_preprocessing.hpp"
 #include "sinew/core/data.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
-#include "sinew/core/kinematics.hpp"
 #include "sinew/io/tool_setup.hpp"
 #include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/inverse_dynamics_tool.hpp"
 #include "sinew/tools/measured_loads.hpp"
-#include "sinew/tools/model_loading.hpp"
+#include "sinew/io/model_loading.hpp"
 
 namespace sinew {
 namespace {
@@ -57,9 +56,7 @@ void runFrame(benchmark::State& state) {
         q = trajectory.q.row(frame).transpose();
         u = trajectory.qdot.row(frame).transpose();
         udot = trajectory.qddot.row(frame).transpose();
-        std::fill(linkForces.begin(), linkForces.end(), SpatialVector::Zero());
-        calcPositionKinematics(model, data, q);
-        measured.addLinkForces(data, trajectory.times[frame], linkForces);
+        calcAppliedLinkForces(model, &measured, data, trajectory.times[frame], q, linkForces);
         calcInverseDynamics(model, data, q, u, udot, linkForces, tau);
         benchmark::DoNotOptimize(tau.data());
         frame = (frame + 1) % trajectory.times.size();

@@ -19,11 +19,10 @@
 
 #include "sinew/core/coordinate_preprocessing.hpp"
 #include "sinew/core/data.hpp"
-#include "sinew/core/kinematics.hpp"
 #include "sinew/io/tool_setup.hpp"
 #include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/measured_loads.hpp"
-#include "sinew/tools/model_loading.hpp"
+#include "sinew/io/model_loading.hpp"
 #include "sinew/tools/tension_analysis.hpp"
 
 namespace sinew {
@@ -55,11 +54,8 @@ Motion prepareMotion(const std::string& modelFile, const std::string& coordinate
         motion.q.push_back(trajectory.q.row(i).transpose());
         motion.u.push_back(trajectory.qdot.row(i).transpose());
         motion.udot.push_back(trajectory.qddot.row(i).transpose());
-        std::vector<SpatialVector> forces(static_cast<std::size_t>(model.getNumLinks()), SpatialVector::Zero());
-        if (measured) {
-            calcPositionKinematics(model, data, motion.q.back());
-            measured->addLinkForces(data, trajectory.times[i], forces);
-        }
+        std::vector<SpatialVector> forces(static_cast<std::size_t>(model.getNumLinks()));
+        calcAppliedLinkForces(model, measured ? &*measured : nullptr, data, trajectory.times[i], motion.q.back(), forces);
         motion.linkForces.push_back(std::move(forces));
     }
     return motion;

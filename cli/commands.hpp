@@ -12,5 +12,6 @@ int runInverseDynamicsCommand(const std::vector<std::string>& args);
 int runRunTool(const std::vector<std::string>& args);
 int runMomentArms(const std::vector<std::string>& args);
 int runTensions(const std::vector<std::string>& args);
+int runWholeBody(const std::vector<std::string>& args);
 
 }  // namespace sinew::cli

@@ -5,16 +5,17 @@
 #include "sinew/core/census.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/io/model_file.hpp"
-#include "sinew/io/osim_model_converter.hpp"
+#include "sinew/io/model_loading.hpp"
 
 namespace sinew::cli {
 namespace {
 
 const char* kUsage =
-    "usage: sinew import MODEL.osim -o MODEL.yaml\n"
-    "  Converts an OpenSim 4 model into sinew's model file: bodies, joints (as custom joints), coordinates,\n"
-    "  muscles as wires with their path points, wrap objects and a Thelen 2003 force law. Lists, by name and\n"
-    "  file:line, every element it leaves out.\n";
+    "usage: sinew import MODEL -o MODEL.yaml\n"
+    "  Converts an OpenSim 4 model (.osim) or a MuJoCo MJCF model (.xml), told apart by their content, into\n"
+    "  sinew's model file: bodies, joints (as custom joints), coordinates, muscles and tendons as wires with\n"
+    "  their path points and wrap objects, and a Thelen 2003 muscle law (docs/opensim-import.md,\n"
+    "  docs/mjcf-import.md). Lists, by name and file:line, every element it leaves out.\n";
 
 }  // namespace
 
@@ -27,13 +28,12 @@ int runImport(const std::vector<std::string>& args) {
     }
     if (reader.helpShown()) return 0;
     if (input.empty() || output.empty()) return reader.failWithUsage();
-    const OsimConversion conversion = convertOsimModel(readOsimModel(input));
-    for (const std::string& line : conversion.notImported) std::printf("not imported: %s\n", line.c_str());
-    writeModelFile(conversion.model, output);
-    const Census census = calcCensus(conversion.model);
+    const Model model = loadModel(input, [](const std::string& line) { std::printf("%s\n", line.c_str()); });
+    writeModelFile(model, output);
+    const Census census = calcCensus(model);
     std::printf("imported %s: %d links, %d DOF, %d wires (%d muscles), %zu wrap objects -> %s\n",
-                conversion.model.getName().c_str(), census.links, census.dof, census.wires, census.muscles,
-                conversion.model.getWrapObjects().size(), output.c_str());
+                model.getName().c_str(), census.links, census.dof, census.wires, census.muscles,
+                model.getWrapObjects().size(), output.c_str());
     return 0;
 }
 

@@ -7,7 +7,7 @@
 #include "progress.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/tools/inverse_dynamics_tool.hpp"
-#include "sinew/tools/model_loading.hpp"
+#include "sinew/io/model_loading.hpp"
 
 namespace sinew::cli {
 namespace {

@@ -12,12 +12,13 @@ const char* kUsage =
     "usage: sinew COMMAND [options]\n"
     "\n"
     "commands:\n"
-    "  info MODEL                      the model's census (paper's Table 1)\n"
+    "  info MODEL                      the model's census (paper's Table 1); MODEL: sinew .yaml, .osim or MJCF\n"
     "  simulate MODEL [--engine sinew|simbody] [--integrator adaptive|rk4] [--step H]\n"
     "                 [--hang-by LINK] [--duration T] [--interval DT] [--accuracy A] [-o DIR]\n"
     "                                  passive forward simulation with sinew's or Simbody's engine;\n"
     "                                  writes .sto files of coordinates, speeds, wire tensions and energy\n"
-    "  import MODEL.osim -o MODEL.yaml   converts an OpenSim 4 model, listing what it leaves out\n"
+    "  import MODEL -o MODEL.yaml      converts an OpenSim 4 (.osim) or MuJoCo MJCF (.xml) model,\n"
+    "                                  listing what it leaves out\n"
     "  inverse-dynamics MODEL MOTION [--external-loads X.xml] [--lowpass HZ] -o OUT.sto\n"
     "                                  generalized forces per frame, processed as OpenSim's ID tool\n"
     "  run-tool SETUP.xml [-o DIR]     runs an OpenSim InverseDynamicsTool or\n"
@@ -25,6 +26,8 @@ const char* kUsage =
     "  moment-arms MODEL [--motion M] [-o DIR]   wire lengths and moment arms (OpenSim MuscleAnalysis files)\n"
     "  tensions MODEL MOTION --method lp|qp|so [--external-loads X.xml] [--lowpass HZ] -o TENSIONS.sto\n"
     "                                  wire tensions per frame (LP, least squares or static optimization)\n"
+    "  whole-body SOURCE --rules R.yaml [--anthropometrics T.csv] -o MODEL.yaml\n"
+    "                                  derives the whole-body wire model from MS-Human-700 by the rules\n"
     "\n"
     "Run 'sinew COMMAND --help' for a command's options.\n";
 
@@ -45,6 +48,7 @@ int main(int argc, char** argv) {
         if (command == "run-tool") return sinew::cli::runRunTool(args);
         if (command == "moment-arms") return sinew::cli::runMomentArms(args);
         if (command == "tensions") return sinew::cli::runTensions(args);
+        if (command == "whole-body") return sinew::cli::runWholeBody(args);
         std::fprintf(stderr, "sinew: unknown command '%s'\n\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const std::exception& e) {

@@ -12,7 +12,7 @@
 #include "sinew/core/wire_path.hpp"
 #include "sinew/io/storage_file.hpp"
 #include "sinew/tools/coordinate_table.hpp"
-#include "sinew/tools/model_loading.hpp"
+#include "sinew/io/model_loading.hpp"
 
 namespace sinew::cli {
 namespace {

@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <optional>
+#include <variant>
 
 #include "arguments.hpp"
 #include "commands.hpp"
@@ -36,13 +37,14 @@ int runRunTool(const std::vector<std::string>& args) {
         if (!progress) progress.emplace("frames", frames);
         progress->update(frame);
     };
-    if (readToolType(setupPath) == ToolType::InverseDynamics) {
-        const InverseDynamicsSetup setup = readInverseDynamicsSetup(setupPath);
+    const ToolSetup tool = readToolSetup(setupPath);
+    if (const auto* inverseDynamics = std::get_if<InverseDynamicsSetup>(&tool)) {
+        const InverseDynamicsSetup& setup = *inverseDynamics;
         const std::string written = runInverseDynamicsTool(setup, outputDir, printNote, onFrame);
         if (progress) progress->finish();
         std::printf("InverseDynamicsTool '%s' -> %s\n", setup.name.c_str(), written.c_str());
     } else {
-        const AnalyzeSetup setup = readAnalyzeSetup(setupPath);
+        const AnalyzeSetup& setup = std::get<AnalyzeSetup>(tool);
         const std::vector<std::string> written = runStaticOptimizationTool(setup, outputDir, printNote, onFrame);
         if (progress) progress->finish();
         std::printf("AnalyzeTool '%s' (StaticOptimization) ->", setup.name.c_str());

@@ -7,7 +7,7 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "sinew/core/error.hpp"
-#include "sinew/tools/model_loading.hpp"
+#include "sinew/io/model_loading.hpp"
 #include "sinew/tools/tension_motion.hpp"
 
 namespace sinew::cli {

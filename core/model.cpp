@@ -48,6 +48,7 @@ const char* toString(WrapMethod method) {
         case WrapMethod::Hybrid: return "hybrid";
         case WrapMethod::Midpoint: return "midpoint";
         case WrapMethod::Axial: return "axial";
+        case WrapMethod::MuJoCo: return "mujoco";
     }
     return "?";
 }

@@ -174,6 +174,39 @@ WrapObject buildWrapObject(const WrapObjectSpec& os, int link) {
     return object;
 }
 
+// One wrap of wire `label` (numPoints points) over `object` (index objectIndex): the range, and MuJoCo's
+// restrictions: a sphere or cylinder, the one segment between two adjacent points, a side site only for it,
+// on link sideSiteLink (resolved from wr.sideSiteLink).
+WireWrap buildWireWrap(const WireWrapSpec& wr, const std::string& where, const std::string& label, int numPoints,
+                       const WrapObject& object, int objectIndex, int sideSiteLink) {
+    const int first = wr.firstPoint.value_or(0), last = wr.lastPoint.value_or(numPoints - 1);
+    if (first < 0 || last >= numPoints || first >= last)
+        throw ModelError(where, label + ": wrap range [" + std::to_string(first) + ", " + std::to_string(last) +
+                                    "] must name two of its points 0.." + std::to_string(numPoints - 1) +
+                                    ", first before last");
+    WireWrap wrap{objectIndex, first, last, wr.method};
+    const std::string wrapLabel = label + ": wrap over '" + wr.object + "'";
+    if (!wr.sideSite && !wr.sideSiteLink.empty())
+        throw ModelError(where, wrapLabel + ": side site link '" + wr.sideSiteLink + "' given without a side site");
+    if (wr.method != WrapMethod::MuJoCo) {
+        if (wr.sideSite) throw ModelError(where, wrapLabel + ": a side site needs the mujoco method");
+        return wrap;
+    }
+    if (object.shape == WrapShape::Ellipsoid)
+        throw ModelError(where, wrapLabel + ": the mujoco method wraps over spheres and cylinders only, not an ellipsoid");
+    if (last != first + 1)
+        throw ModelError(where, wrapLabel + ": the mujoco method wraps the one segment between two adjacent points "
+                                            "(range [k, k + 1]), got [" + std::to_string(first) + ", " +
+                                            std::to_string(last) + "]");
+    if (wr.sideSite) {
+        requireFinite(where, wrapLabel + ": side site", *wr.sideSite);
+        wrap.hasSideSite = true;
+        wrap.sideSiteLink = sideSiteLink;
+        wrap.sideSite_B = *wr.sideSite;
+    }
+    return wrap;
+}
+
 void checkMassProperties(const LinkSpec& link, bool welded) {
     if (!std::isfinite(link.mass)) throw ModelError(link.where, "link '" + link.name + "': mass must be finite");
     requireFinite(link.where, "link '" + link.name + "': com", link.com_B);
@@ -572,15 +605,22 @@ Model ModelBuilder::build() const {
             const std::string& where = wr.where.empty() ? ws.where : wr.where;
             auto it = wrapIndex.find(wr.object);
             if (it == wrapIndex.end()) throw ModelError(where, label + ": unknown wrap object '" + wr.object + "'");
-            const int first = wr.firstPoint.value_or(0), last = wr.lastPoint.value_or(wire.numPoints - 1);
-            if (first < 0 || last >= wire.numPoints || first >= last)
-                throw ModelError(where, label + ": wrap range [" + std::to_string(first) + ", " + std::to_string(last) +
-                                            "] must name two of its points 0.." + std::to_string(wire.numPoints - 1) +
-                                            ", first before last");
-            for (const WireWrap& other : wire.wraps)
-                if (other.object == it->second)
+            const WrapObject& object = model.wrapObjects_[static_cast<std::size_t>(it->second)];
+            const int sideSiteLink = wr.sideSiteLink.empty()
+                                         ? object.link
+                                         : resolveLink(where, label + ": wrap over '" + wr.object + "': side site", wr.sideSiteLink);
+            const WireWrap wrap = buildWireWrap(wr, where, label, wire.numPoints, object, it->second, sideSiteLink);
+            // MuJoCo may wrap one geom in several segments of a tendon, but each segment over one geom only.
+            for (const WireWrap& other : wire.wraps) {
+                const bool mujoco = wrap.method == WrapMethod::MuJoCo || other.method == WrapMethod::MuJoCo;
+                const bool overlapping = other.firstPoint < wrap.lastPoint && wrap.firstPoint < other.lastPoint;
+                if (!mujoco && other.object == it->second)
                     throw ModelError(where, label + ": wraps over '" + wr.object + "' twice");
-            wire.wraps.push_back({it->second, first, last, wr.method});
+                if (mujoco && overlapping)
+                    throw ModelError(where, label + ": a mujoco wrap's segment [" + std::to_string(wrap.firstPoint) + ", " +
+                                                std::to_string(wrap.lastPoint) + "] is wrapped by one object only");
+            }
+            wire.wraps.push_back(wrap);
         }
         wire.lawSpec = ws.law;
         try {
@@ -596,7 +636,10 @@ Model ModelBuilder::build() const {
                 if (!support.insert(l).second) break;
         };
         for (int k = 0; k < wire.numPoints; ++k) addSupport(model.wirePoints_[static_cast<std::size_t>(wire.firstPoint + k)].link);
-        for (const WireWrap& wrap : wire.wraps) addSupport(model.wrapObjects_[static_cast<std::size_t>(wrap.object)].link);
+        for (const WireWrap& wrap : wire.wraps) {
+            addSupport(model.wrapObjects_[static_cast<std::size_t>(wrap.object)].link);
+            if (wrap.hasSideSite) addSupport(wrap.sideSiteLink);
+        }
         wire.supportLinks.assign(support.begin(), support.end());
         model.wires_.push_back(std::move(wire));
     }

@@ -33,7 +33,8 @@ void calcResidualDerivative(const Model& model, const Data& data, VirtualLinkEqu
                             const Eigen::Vector3d& dOrigin, Eigen::Ref<Eigen::VectorXd> out) {
     const std::vector<WirePoint>& points = model.getWirePoints();
     out.setZero();
-    for (int w : eq.wires) {
+    // Moving one virtual link leaves the wires that do not touch it as they are.
+    for (int w : movedSlot >= 0 ? eq.wiresOfSlot[static_cast<std::size_t>(movedSlot)] : eq.wires) {
         const Wire& wire = model.getWire(w);
         const std::size_t first = static_cast<std::size_t>(wire.firstPoint);
         const std::size_t last = first + static_cast<std::size_t>(wire.numPoints) - 1;
@@ -118,6 +119,7 @@ VirtualLinkEquilibriumData::VirtualLinkEquilibriumData(const Model& model)
     const std::vector<WirePoint>& points = model.getWirePoints();
     std::vector<double> sumSquares(links.size(), 0.0);
     std::vector<int> count(links.size(), 0);
+    wiresOfSlot.resize(links.size());
     for (int w = 0; w < model.getNumWires(); ++w) {
         const Wire& wire = model.getWire(w);
         bool touches = false;
@@ -126,6 +128,8 @@ VirtualLinkEquilibriumData::VirtualLinkEquilibriumData(const Model& model)
             const int slot = slotOfLink[static_cast<std::size_t>(point.link)];
             if (slot < 0) continue;
             touches = true;
+            std::vector<int>& slotWires = wiresOfSlot[static_cast<std::size_t>(slot)];
+            if (slotWires.empty() || slotWires.back() != w) slotWires.push_back(w);
             sumSquares[static_cast<std::size_t>(slot)] += point.p_B.squaredNorm();
             ++count[static_cast<std::size_t>(slot)];
         }
@@ -218,7 +222,7 @@ void calcVirtualLinkStiffness(const Model& model, const Data& data, VirtualLinkE
             const Eigen::Vector3d dtheta = j < 3 ? Eigen::Vector3d(Eigen::Vector3d::Unit(j) / eq.lengthScale[s])
                                                  : Eigen::Vector3d::Zero();
             const Eigen::Vector3d dOrigin = j < 3 ? Eigen::Vector3d(Eigen::Vector3d::Zero()) : Eigen::Vector3d(Eigen::Vector3d::Unit(j - 3));
-            for (int w : eq.wires) {
+            for (int w : eq.wiresOfSlot[s]) {
                 const Wire& wire = model.getWire(w);
                 for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
                     const std::size_t kk = static_cast<std::size_t>(k);

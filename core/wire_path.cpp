@@ -77,14 +77,25 @@ struct PathInputs {
     const Eigen::VectorXd& q;
 };
 
+// A MuJoCo wrap's side site in its object's frame W (pose R_GW, p_GW) at this pose: it moves with its own
+// link, which need not be the object's.
+Eigen::Vector3d calcSideSite_W(const PathInputs& data, const WireWrap& wrap, const Eigen::Matrix3d& R_GW,
+                               const Eigen::Vector3d& p_GW) {
+    const std::size_t b = static_cast<std::size_t>(wrap.sideSiteLink);
+    return R_GW.transpose() * (data.p_GB[b] + data.R_GB[b] * wrap.sideSite_B - p_GW);
+}
+
 // OpenSim's GeometryPath::applyWrapObjects: each wrap in turn takes its tangent points out, tries every
 // segment in its range, and puts back the wrap a segment must take (it passes through the object) or,
 // failing that, the one that lengthens the path least. With several wraps, up to 8 rounds until the
 // length settles within 0.5 mm; a first round where the first wrap missed and the second found an end
-// inside its object is redone with those two swapped.
+// inside its object is redone with those two swapped. MuJoCo's wraps each take a segment of their own, so
+// they settle in one round whatever their order (docs/wire-paths.md, "MuJoCo wrapping").
 void applyWraps(const Model& model, const PathInputs& data, const Wire& wire, PathSlice path) {
     const int numWraps = static_cast<int>(wire.wraps.size());
-    const int rounds = numWraps < 2 ? 1 : 8;
+    const bool independent = std::all_of(wire.wraps.begin(), wire.wraps.end(),
+                                         [](const WireWrap& wrap) { return wrap.method == WrapMethod::MuJoCo; });
+    const int rounds = numWraps < 2 || independent ? 1 : 8;
     bool swapped = false;
     double lastLength = std::numeric_limits<double>::infinity();
     WrapStatus firstStatus = WrapStatus::NoWrap, secondStatus = WrapStatus::NoWrap;
@@ -103,14 +114,17 @@ void applyWraps(const Model& model, const PathInputs& data, const Wire& wire, Pa
             const std::size_t b = static_cast<std::size_t>(object.link);
             const Eigen::Matrix3d R_GW = data.R_GB[b] * object.R_BW;
             const Eigen::Vector3d p_GW = data.p_GB[b] + data.R_GB[b] * object.p_BW;
+            const Eigen::Vector3d sideSite_W =
+                wrap.hasSideSite ? calcSideSite_W(data, wrap, R_GW, p_GW) : Eigen::Vector3d(Eigen::Vector3d::Zero());
             WrapStatus status = WrapStatus::NoWrap;
             WrapSolution best;
             int bestSegment = -1;
             double leastIncrease = std::numeric_limits<double>::infinity();
             for (int k = start; k < end; ++k) {
                 if (isSameWrap(path[k], path[k + 1])) continue;
-                const Eigen::Vector3d &p1 = path[k].p_G, &p2 = path[k + 1].p_G;
-                const WrapSolution s = calcWrap(object, wrap.method, R_GW.transpose() * (p1 - p_GW), R_GW.transpose() * (p2 - p_GW));
+                const Eigen::Vector3d p1_W = R_GW.transpose() * (path[k].p_G - p_GW);
+                const Eigen::Vector3d p2_W = R_GW.transpose() * (path[k + 1].p_G - p_GW);
+                const WrapSolution s = calcWrap(object, wrap.method, wrap.hasSideSite ? &sideSite_W : nullptr, p1_W, p2_W);
                 status = s.status;
                 if (status == WrapStatus::MandatoryWrap) {
                     best = s;
@@ -118,8 +132,7 @@ void applyWraps(const Model& model, const PathInputs& data, const Wire& wire, Pa
                     break;
                 }
                 if (status == WrapStatus::Wrapped) {
-                    const double increase = (p_GW + R_GW * s.r1_W - p1).norm() + s.arcLength +
-                                            (p2 - p_GW - R_GW * s.r2_W).norm() - (p2 - p1).norm();
+                    const double increase = s.calcLength(p1_W, p2_W) - (p2_W - p1_W).norm();
                     if (increase < leastIncrease) {
                         leastIncrease = increase;
                         best = s;
@@ -204,7 +217,10 @@ void resetDisplacedCopies(const Model& model, Data& data, const Wire& wire) {
         reset(points[kk].link);
         data.displacedP_GP[kk] = data.p_GP[kk];
     }
-    for (const WireWrap& wrap : wire.wraps) reset(model.getWrapObjects()[static_cast<std::size_t>(wrap.object)].link);
+    for (const WireWrap& wrap : wire.wraps) {
+        reset(model.getWrapObjects()[static_cast<std::size_t>(wrap.object)].link);
+        if (wrap.hasSideSite) reset(wrap.sideSiteLink);
+    }
 }
 
 // The wire's length after `displacement` over a step h; leaves the displaced copies as Data has them.
@@ -221,7 +237,10 @@ double calcDisplacedLength(const Model& model, Data& data, const Wire& wire, con
         data.displacedP_GB[b] = displacement.p_ref + rotation * (data.p_GB[b] - displacement.p_ref) + h * displacement.xi_G.tail<3>();
     };
     for (int k = 0; k < wire.numPoints; ++k) displace(points[static_cast<std::size_t>(wire.firstPoint + k)].link);
-    for (const WireWrap& wrap : wire.wraps) displace(model.getWrapObjects()[static_cast<std::size_t>(wrap.object)].link);
+    for (const WireWrap& wrap : wire.wraps) {
+        displace(model.getWrapObjects()[static_cast<std::size_t>(wrap.object)].link);
+        if (wrap.hasSideSite) displace(wrap.sideSiteLink);
+    }
     if (displacement.qIndex >= 0) data.displacedQ[displacement.qIndex] += h;
     for (int k = 0; k < wire.numPoints; ++k) {
         const std::size_t kk = static_cast<std::size_t>(wire.firstPoint + k), b = static_cast<std::size_t>(points[kk].link);
@@ -237,7 +256,7 @@ double calcDisplacedLength(const Model& model, Data& data, const Wire& wire, con
 }
 
 // dL/du of wire w by central differences of its whole path, OpenSim's wrap rounds included: along each
-// mobility of the joints that move its points and objects, as the rigid motion of the joint's subtree (the
+// mobility of the joints that move its points, objects and side sites, as the rigid motion of the joint's subtree (the
 // joint's twist from its motion subspace), with the coordinate itself moved for the wire's moving and
 // conditional points. A step of 1e-6 (rad or m) keeps truncation and roundoff near 1e-10 of the moment arm.
 void calcLengthGradientNumerically(const Model& model, Data& data, int w) {
@@ -290,6 +309,15 @@ double calcWirePointMotionRate(const Model& model, const WirePointMotion& motion
     const double value = q[motion.q];
     if (clampToRange(model, motion.q, value) != value) return 0;
     return motion.function.calcDerivative(value, 1);
+}
+
+double calcWirePointMotionTerm(const Model& model, const Data& data, int w, const WirePointMotion& motion) {
+    const PathPoint* path = data.wirePath.data() + data.wirePathStart[static_cast<std::size_t>(w)];
+    for (int i = 0; i < data.wirePathSize[static_cast<std::size_t>(w)]; ++i)
+        if (path[i].point == motion.point)
+            return path[i].dLdp_G.dot(data.R_GB[static_cast<std::size_t>(path[i].link)].col(motion.axis)) *
+                   calcWirePointMotionRate(model, motion, data.q);
+    return 0;
 }
 
 bool isLengthDifferentiatedNumerically(const Model& model, int w) {

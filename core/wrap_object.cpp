@@ -6,8 +6,9 @@
 
 namespace sinew {
 
-WrapSolution calcWrap(const WrapObject& object, WrapMethod method, const Eigen::Vector3d& p1_W,
-                      const Eigen::Vector3d& p2_W) {
+WrapSolution calcWrap(const WrapObject& object, WrapMethod method, const Eigen::Vector3d* sideSite_W,
+                      const Eigen::Vector3d& p1_W, const Eigen::Vector3d& p2_W) {
+    if (method == WrapMethod::MuJoCo) return calcMuJoCoWrap(object, sideSite_W, p1_W, p2_W);
     switch (object.shape) {
         case WrapShape::Sphere: return calcSphereWrap(object, p1_W, p2_W);
         case WrapShape::Cylinder: return calcCylinderWrap(object, p1_W, p2_W);

@@ -51,20 +51,8 @@ StaticOptimizationAnalysis readStaticOptimization(const XmlDocument& doc, const 
     return settings;
 }
 
-}  // namespace
-
-ToolType readToolType(const std::string& path) {
-    const XmlDocument doc(path);
-    const Element& tool = doc.getFirstObject();
-    const std::string type = tool.Name();
-    if (type == "InverseDynamicsTool") return ToolType::InverseDynamics;
-    if (type == "AnalyzeTool") return ToolType::Analyze;
-    doc.fail(tool, "not a tool sinew runs (expected an InverseDynamicsTool or AnalyzeTool setup)");
-}
-
-InverseDynamicsSetup readInverseDynamicsSetup(const std::string& path) {
-    const XmlDocument doc(path);
-    const Element& tool = doc.getObject("InverseDynamicsTool");
+InverseDynamicsSetup readInverseDynamicsTool(const XmlDocument& doc, const Element& tool) {
+    const std::string& path = doc.getPath();
     InverseDynamicsSetup setup;
     setup.name = osim::getName(tool);
     setup.file = path;
@@ -87,9 +75,8 @@ InverseDynamicsSetup readInverseDynamicsSetup(const std::string& path) {
     return setup;
 }
 
-AnalyzeSetup readAnalyzeSetup(const std::string& path) {
-    const XmlDocument doc(path);
-    const Element& tool = doc.getObject("AnalyzeTool");
+AnalyzeSetup readAnalyzeTool(const XmlDocument& doc, const Element& tool) {
+    const std::string& path = doc.getPath();
     AnalyzeSetup setup;
     setup.name = osim::getName(tool);
     setup.file = path;
@@ -123,6 +110,27 @@ AnalyzeSetup readAnalyzeSetup(const std::string& path) {
         for (const Element* controller : osim::getSetObjects(*controllers))
             setup.unsupported.push_back({controller->Name(), osim::getName(*controller), doc.where(*controller)});
     return setup;
+}
+
+}  // namespace
+
+InverseDynamicsSetup readInverseDynamicsSetup(const std::string& path) {
+    const XmlDocument doc(path);
+    return readInverseDynamicsTool(doc, doc.getObject("InverseDynamicsTool"));
+}
+
+AnalyzeSetup readAnalyzeSetup(const std::string& path) {
+    const XmlDocument doc(path);
+    return readAnalyzeTool(doc, doc.getObject("AnalyzeTool"));
+}
+
+ToolSetup readToolSetup(const std::string& path) {
+    const XmlDocument doc(path);
+    const Element& tool = doc.getFirstObject();
+    const std::string type = tool.Name();
+    if (type == "InverseDynamicsTool") return readInverseDynamicsTool(doc, tool);
+    if (type == "AnalyzeTool") return readAnalyzeTool(doc, tool);
+    doc.fail(tool, "not a tool sinew runs (expected an InverseDynamicsTool or AnalyzeTool setup)");
 }
 
 OsimForceSet readForceSetFile(const std::string& path) {

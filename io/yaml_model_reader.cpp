@@ -10,14 +10,15 @@
 #include "sinew/core/error.hpp"
 #include "sinew/core/model_builder.hpp"
 #include "sinew/io/model_file.hpp"
+#include "yaml_fields.hpp"
 
 namespace sinew {
 namespace {
 
 // Reads one model document, turning every problem into a ModelError at "file:line".
-class Reader {
+class Reader : public YamlFields {
 public:
-    explicit Reader(std::string source) : source_(std::move(source)) {}
+    using YamlFields::YamlFields;
 
     Model read(const YAML::Node& root) {
         if (!root.IsMap()) fail(root, "a model file is a mapping with keys sinew_model, name, links, joints, ...");
@@ -41,80 +42,6 @@ public:
     }
 
 private:
-    std::string source_;
-
-    std::string where(const YAML::Node& node) const { return source_ + ":" + std::to_string(node.Mark().line + 1); }
-
-    [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
-        throw ModelError(where(node), message);
-    }
-
-    void requireKeys(const YAML::Node& map, const std::string& what, std::set<std::string> allowed) const {
-        for (const auto& entry : map) {
-            const std::string key = entry.first.Scalar();
-            if (!allowed.count(key)) {
-                std::string list;
-                for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-                fail(entry.first, "unknown field '" + key + "' in " + what + " (expected one of: " + list + ")");
-            }
-        }
-    }
-
-    std::vector<YAML::Node> sequence(const YAML::Node& root, const std::string& key) const {
-        std::vector<YAML::Node> items;
-        const YAML::Node node = root[key];
-        if (!node || node.IsNull()) return items;
-        if (!node.IsSequence()) fail(node, "field '" + key + "' must be a list");
-        for (const YAML::Node& item : node) {
-            if (!item.IsMap()) fail(item, "each entry of '" + key + "' must be a mapping of fields");
-            items.push_back(item);
-        }
-        return items;
-    }
-
-    YAML::Node field(const YAML::Node& map, const std::string& key, const std::string& owner) const {
-        const YAML::Node node = map[key];
-        if (!node || node.IsNull()) fail(map, owner + ": missing field '" + key + "'");
-        return node;
-    }
-
-    std::string readString(const YAML::Node& node, const std::string& key) const {
-        if (!node.IsScalar()) fail(node, "field '" + key + "' must be a single word or string");
-        return node.Scalar();
-    }
-
-    double readNumber(const YAML::Node& node, const std::string& key) const {
-        if (!node.IsScalar()) fail(node, "field '" + key + "' must be a number");
-        double value = 0;
-        try {
-            value = node.as<double>();
-        } catch (const YAML::Exception&) {
-            fail(node, "field '" + key + "' must be a number, got '" + node.Scalar() + "'");
-        }
-        if (!std::isfinite(value)) fail(node, "field '" + key + "' must be finite, got '" + node.Scalar() + "'");
-        return value;
-    }
-
-    int readInt(const YAML::Node& node, const std::string& key) const {
-        const double value = readNumber(node, key);
-        if (value != std::floor(value) || std::abs(value) > 1e9) fail(node, "field '" + key + "' must be a whole number");
-        return static_cast<int>(value);
-    }
-
-    std::vector<double> readNumbers(const YAML::Node& node, const std::string& key) const {
-        if (node.IsScalar()) return {readNumber(node, key)};
-        if (!node.IsSequence()) fail(node, "field '" + key + "' must be a number or a list of numbers");
-        std::vector<double> values;
-        for (const YAML::Node& item : node) values.push_back(readNumber(item, key));
-        return values;
-    }
-
-    Eigen::Vector3d readVector3(const YAML::Node& node, const std::string& key) const {
-        const std::vector<double> v = readNumbers(node, key);
-        if (v.size() != 3 || !node.IsSequence()) fail(node, "field '" + key + "' must be a list of 3 numbers");
-        return Eigen::Vector3d(v[0], v[1], v[2]);
-    }
-
     LinkSpec readLink(const YAML::Node& node) const {
         requireKeys(node, "link", {"name", "mass", "com", "inertia"});
         LinkSpec link;
@@ -325,7 +252,7 @@ private:
     }
 
     WireWrapSpec readWireWrap(const YAML::Node& node, const std::string& owner) const {
-        requireKeys(node, "wrap", {"object", "range", "method"});
+        requireKeys(node, "wrap", {"object", "range", "method", "side_site", "side_site_link"});
         WireWrapSpec wrap;
         wrap.where = where(node);
         wrap.object = readString(field(node, "object", owner + " wrap"), "object");
@@ -340,8 +267,11 @@ private:
             if (name == "hybrid") wrap.method = WrapMethod::Hybrid;
             else if (name == "midpoint") wrap.method = WrapMethod::Midpoint;
             else if (name == "axial") wrap.method = WrapMethod::Axial;
-            else fail(method, owner + ": unknown wrap method '" + name + "' (expected hybrid, midpoint or axial)");
+            else if (name == "mujoco") wrap.method = WrapMethod::MuJoCo;
+            else fail(method, owner + ": unknown wrap method '" + name + "' (expected hybrid, midpoint, axial or mujoco)");
         }
+        if (const YAML::Node side = node["side_site"]) wrap.sideSite = readVector3(side, "side_site");
+        if (const YAML::Node link = node["side_site_link"]) wrap.sideSiteLink = readString(link, "side_site_link");
         return wrap;
     }
 

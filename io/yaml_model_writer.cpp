@@ -243,10 +243,17 @@ std::string writeModelText(const Model& model) {
         if (!wire.wraps.empty()) {
             out << YAML::Key << "wraps" << YAML::Value << YAML::BeginSeq;
             for (const WireWrap& wrap : wire.wraps) {
-                out << YAML::Flow << YAML::BeginMap << YAML::Key << "object" << YAML::Value
-                    << model.getWrapObjects()[static_cast<std::size_t>(wrap.object)].name << YAML::Key << "range"
+                const WrapObject& object = model.getWrapObjects()[static_cast<std::size_t>(wrap.object)];
+                out << YAML::Flow << YAML::BeginMap << YAML::Key << "object" << YAML::Value << object.name << YAML::Key << "range"
                     << YAML::Value << YAML::Flow << YAML::BeginSeq << wrap.firstPoint << wrap.lastPoint << YAML::EndSeq
-                    << YAML::Key << "method" << YAML::Value << toString(wrap.method) << YAML::EndMap;
+                    << YAML::Key << "method" << YAML::Value << toString(wrap.method);
+                if (wrap.hasSideSite) {
+                    out << YAML::Key << "side_site" << YAML::Value;
+                    emitVector(out, wrap.sideSite_B);
+                    if (wrap.sideSiteLink != object.link)
+                        out << YAML::Key << "side_site_link" << YAML::Value << linkName(model, wrap.sideSiteLink);
+                }
+                out << YAML::EndMap;
             }
             out << YAML::EndSeq;
         }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "eigen_simtk.hpp"
 #include "sinew/core/data.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/kinematics.hpp"
@@ -9,15 +10,6 @@
 
 namespace sinew {
 namespace {
-
-SimTK::Vec3 toVec3(const Eigen::Vector3d& v) { return SimTK::Vec3(v[0], v[1], v[2]); }
-
-SimTK::Rotation toRotation(const Eigen::Matrix3d& R) {
-    SimTK::Mat33 m;
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) m(r, c) = R(r, c);
-    return SimTK::Rotation(m);
-}
 
 SimTK::Body::Rigid makeBody(const Link& link) {
     const Eigen::Matrix3d& I = link.inertia_Bcom;
@@ -101,31 +93,23 @@ SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
         }
     }
 
-    if (options.wires) {
+    if (options.wires && model_.getNumWires() > 0) {
+        wirePaths_ = &SimbodyWirePaths::adopt(*system_, *matter_, model_, mobilizedBodies_);
         std::vector<char> throughVirtualLink(static_cast<std::size_t>(model_.getNumWires()), 0);
         const auto& links = model_.getLinks();
         if (std::any_of(links.begin(), links.end(), [](const Link& link) { return link.isVirtual; })) {
-            auto* implementation = new VirtualLinkWireForce(*matter_, model_, mobilizedBodies_);
+            auto* implementation = new VirtualLinkWireForce(*wirePaths_);
             SimTK::Force::Custom(*forces_, implementation);  // takes ownership
             virtualLinkWireForce_ = implementation;
-            for (int w : implementation->getEquilibrium().wires) throughVirtualLink[static_cast<std::size_t>(w)] = 1;
+            for (int w : wirePaths_->getEquilibrium().wires) throughVirtualLink[static_cast<std::size_t>(w)] = 1;
         }
         for (int w = 0; w < model_.getNumWires(); ++w) {
-            const Wire& wire = model_.getWire(w);
             if (throughVirtualLink[static_cast<std::size_t>(w)]) {
                 wireImplementations_.push_back(nullptr);
                 wireForces_.emplace_back();
                 continue;
             }
-            if (!wire.isPolyline())
-                throw Error("wire '" + wire.name + "' has conditional or moving points or wraps, which the Simbody "
-                            "plugin's wire element does not model yet (docs/wire-paths.md); use sinew's engine");
-            std::vector<WireForce::Station> path;
-            for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
-                const WirePoint& point = model_.getWirePoints()[static_cast<std::size_t>(k)];
-                path.push_back({mobilizedBodies_[static_cast<std::size_t>(point.link)], toVec3(point.p_B)});
-            }
-            auto* implementation = new WireForce(*matter_, wire.name, std::move(path), wire.law);
+            auto* implementation = new WireForce(*wirePaths_, w);
             wireImplementations_.push_back(implementation);
             wireForces_.push_back(SimTK::Force::Custom(*forces_, implementation).getForceIndex());  // takes ownership
         }
@@ -157,15 +141,9 @@ const WireForce& SimbodyModel::getWireForce(int wire) const {
 }
 
 Eigen::VectorXd SimbodyModel::calcWireTensions(const SimTK::State& state) const {
-    Eigen::VectorXd tensions = Eigen::VectorXd::Zero(model_.getNumWires());
-    if (virtualLinkWireForce_) {
-        virtualLinkWireForce_->solve(state);
-        for (int w : virtualLinkWireForce_->getEquilibrium().wires)
-            tensions[w] = virtualLinkWireForce_->getEquilibrium().tension[w];
-    }
-    for (std::size_t w = 0; w < wireImplementations_.size(); ++w)
-        if (wireImplementations_[w]) tensions[static_cast<Eigen::Index>(w)] = wireImplementations_[w]->calcTension(state);
-    return tensions;
+    if (!wirePaths_) return Eigen::VectorXd::Zero(model_.getNumWires());
+    wirePaths_->realizeTensions(state);
+    return wirePaths_->getTensions();
 }
 
 void SimbodyModel::calcCoordinates(const SimTK::State& state, Eigen::VectorXd& q, Eigen::VectorXd& u) const {

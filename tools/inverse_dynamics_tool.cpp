@@ -1,6 +1,5 @@
 #include "sinew/tools/inverse_dynamics_tool.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -8,10 +7,9 @@
 #include "sinew/core/data.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
-#include "sinew/core/kinematics.hpp"
 #include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/measured_loads.hpp"
-#include "sinew/tools/model_loading.hpp"
+#include "sinew/io/model_loading.hpp"
 
 namespace sinew {
 namespace {
@@ -45,11 +43,7 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
         q = trajectory.q.row(i).transpose();
         u = trajectory.qdot.row(i).transpose();
         udot = trajectory.qddot.row(i).transpose();
-        std::fill(linkForces.begin(), linkForces.end(), SpatialVector::Zero());
-        if (measured) {
-            calcPositionKinematics(model, data, q);
-            measured->addLinkForces(data, t, linkForces);
-        }
+        calcAppliedLinkForces(model, measured ? &*measured : nullptr, data, t, q, linkForces);
         calcInverseDynamics(model, data, q, u, udot, linkForces, tau);
         if (!tau.allFinite())
             throw Error("inverse dynamics at t = " + std::to_string(t) + " s (frame " + std::to_string(i + 1) +

@@ -1,6 +1,9 @@
 #include "sinew/tools/measured_loads.hpp"
 
+#include <algorithm>
+
 #include "sinew/core/error.hpp"
+#include "sinew/core/kinematics.hpp"
 
 namespace sinew {
 namespace {
@@ -69,6 +72,14 @@ void MeasuredLoads::addLinkForces(const Data& data, double t, std::vector<Spatia
         linkForces[b].head<3>() += (p_G - data.p_GB[b]).cross(f_G) + toGround(load.forceFrame, load.torque.calcValue(t));
         linkForces[b].tail<3>() += f_G;
     }
+}
+
+void calcAppliedLinkForces(const Model& model, const MeasuredLoads* loads, Data& data, double t, const Eigen::VectorXd& q,
+                           std::vector<SpatialVector>& linkForces) {
+    std::fill(linkForces.begin(), linkForces.end(), SpatialVector::Zero());
+    if (!loads) return;
+    calcPositionKinematics(model, data, q);
+    loads->addLinkForces(data, t, linkForces);
 }
 
 }  // namespace sinew

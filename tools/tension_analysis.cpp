@@ -124,7 +124,7 @@ TensionAnalysis::TensionAnalysis(const Model& model, TensionAnalysisOptions opti
     frame_.unactuated.assign(static_cast<std::size_t>(nu), 0);
     for (int link = 0; link < model.getNumLinks(); ++link)
         if (model.getLink(link).isVirtual && model.getJoint(link).parent == kGround) virtualLinksOnGround_.push_back(link);
-    rigidMotion_.setZero(nu);
+    rigidMotion_.setZero(nu, 6);
     unbalanced_.setZero(nu);
     virtualLinkMotion_.resize(virtualLinksOnGround_.size());
 }
@@ -161,21 +161,26 @@ void TensionAnalysis::judgeByRigidMotion(int rootLink, Eigen::VectorXd& rowSize)
         const int link = virtualLinksOnGround_[v];
         virtualLinkMotion_[v].compute(calcJointMotion_G(model_.getJoint(link), data_, link, p_ref));
     }
+    // Column c of rigidMotion_: the u of the rigid motion along mobility c; one pass over A for all of them.
+    const Eigen::Index n = joint.nu;
+    rigidMotion_.leftCols(n).setZero();
     for (int c = 0; c < joint.nu; ++c) {
-        rigidMotion_.setZero();
-        rigidMotion_[joint.uStart + c] = 1;
+        rigidMotion_(joint.uStart + c, c) = 1;
         for (std::size_t v = 0; v < virtualLinksOnGround_.size(); ++v) {
             const Joint& free = model_.getJoint(virtualLinksOnGround_[v]);
-            rigidMotion_.segment(free.uStart, free.nu) = virtualLinkMotion_[v].solve(SpatialVector(H_root.col(c)));
+            rigidMotion_.block(free.uStart, c, free.nu, 1) = virtualLinkMotion_[v].solve(SpatialVector(H_root.col(c)));
         }
-        unbalanced_[joint.uStart + c] = rigidMotion_.dot(frame_.tau);
-        double actuation = 0;
-        for (Eigen::Index k = 0; k < problem_.A.outerSize(); ++k) {
-            double along = 0;
-            for (Eigen::SparseMatrix<double>::InnerIterator it(problem_.A, k); it; ++it) along += it.value() * rigidMotion_[it.row()];
-            actuation = std::fmax(actuation, std::fabs(along));
-        }
-        rowSize[joint.uStart + c] = actuation;
+    }
+    SpatialVector actuation = SpatialVector::Zero(), along;
+    for (Eigen::Index k = 0; k < problem_.A.outerSize(); ++k) {
+        along.head(n).setZero();
+        for (Eigen::SparseMatrix<double>::InnerIterator it(problem_.A, k); it; ++it)
+            along.head(n) += it.value() * rigidMotion_.row(it.row()).head(n).transpose();
+        actuation.head(n) = actuation.head(n).cwiseMax(along.head(n).cwiseAbs());
+    }
+    for (int c = 0; c < joint.nu; ++c) {
+        rowSize[joint.uStart + c] = actuation[c];
+        unbalanced_[joint.uStart + c] = rigidMotion_.col(c).dot(frame_.tau);
     }
 }
 

@@ -1,11 +1,9 @@
 #include "sinew/tools/tension_motion.hpp"
 
-#include <algorithm>
 #include <optional>
 
 #include "sinew/core/coordinate_preprocessing.hpp"
 #include "sinew/core/error.hpp"
-#include "sinew/core/kinematics.hpp"
 #include "sinew/core/smoothing_spline.hpp"
 #include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/measured_loads.hpp"
@@ -111,11 +109,7 @@ TensionMotionResult analyseTrajectory(const Model& model, const CoordinateTrajec
         q = trajectory.q.row(i).transpose();
         u = trajectory.qdot.row(i).transpose();
         udot = trajectory.qddot.row(i).transpose();
-        std::fill(linkForces.begin(), linkForces.end(), SpatialVector::Zero());
-        if (measured) {
-            calcPositionKinematics(model, data, q);
-            measured->addLinkForces(data, t, linkForces);
-        }
+        calcAppliedLinkForces(model, measured ? &*measured : nullptr, data, t, q, linkForces);
         const TensionFrame& frame = analysis.calcFrame(q, u, udot, linkForces);
         if (!frame.tau.allFinite())
             throw Error("tensions at t = " + std::to_string(t) + " s (frame " + std::to_string(i + 1) +

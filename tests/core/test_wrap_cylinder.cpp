@@ -20,10 +20,6 @@ WrapObject makeCylinder(double radius, double length, int quadrantAxis = 0, int 
     return cylinder;
 }
 
-double pathLength(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2, const WrapSolution& s) {
-    return (s.r1_W - p1).norm() + s.arcLength + (p2 - s.r2_W).norm();
-}
-
 TEST(WrapCylinder, HelixMatchesClosedForm) {
     // Ends (-+2, 0.1, -+1) round a unit cylinder: across the axis as the sphere case in its plane, H =
     // 2 sqrt(D^2 - 1) + arc, and the rise of 2 is shared in proportion.
@@ -33,7 +29,7 @@ TEST(WrapCylinder, HelixMatchesClosedForm) {
     const double D = std::sqrt(4.01), tangent = std::sqrt(D * D - 1);
     const double arc = M_PI - 2 * std::atan(0.05) - 2 * std::acos(1 / D);
     const double H = 2 * tangent + arc;
-    EXPECT_NEAR(pathLength(p1, p2, s), std::hypot(H, 2.0), 1e-14);
+    EXPECT_NEAR(s.calcLength(p1, p2), std::hypot(H, 2.0), 1e-14);
     EXPECT_NEAR(s.arcLength, std::hypot(arc, 2 * arc / H), 1e-14);
     EXPECT_NEAR(s.r1_W.z(), -1 + 2 * tangent / H, 1e-14);
     EXPECT_NEAR(s.r2_W.z(), 1 - 2 * tangent / H, 1e-14);

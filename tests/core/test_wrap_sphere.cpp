@@ -21,10 +21,6 @@ WrapObject makeSphere(double radius, int quadrantAxis = 0, int quadrantSign = 0)
     return sphere;
 }
 
-double pathLength(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2, const WrapSolution& s) {
-    return (s.r1_W - p1).norm() + s.arcLength + (p2 - s.r2_W).norm();
-}
-
 TEST(WrapSphere, SymmetricSegmentMatchesClosedForm) {
     // Ends (-+2, 0.1, 0): each tangent is sqrt(D^2 - 1) long, D^2 = 4.01, and touches at acos(1/D) from
     // the end's polar angle; the arc over the top spans pi - 2 atan(0.05) - 2 acos(1/D).
@@ -34,7 +30,7 @@ TEST(WrapSphere, SymmetricSegmentMatchesClosedForm) {
     const double D = std::sqrt(4.01), alpha = std::acos(1 / D);
     const double arc = M_PI - 2 * std::atan(0.05) - 2 * alpha;
     EXPECT_NEAR(s.arcLength, arc, 1e-14);
-    EXPECT_NEAR(pathLength(p1, p2, s), 2 * std::sqrt(D * D - 1) + arc, 1e-14);
+    EXPECT_NEAR(s.calcLength(p1, p2), 2 * std::sqrt(D * D - 1) + arc, 1e-14);
     const double theta1 = M_PI - std::atan(0.05) - alpha;
     EXPECT_LE((s.r1_W - Eigen::Vector3d(std::cos(theta1), std::sin(theta1), 0)).norm(), 1e-14);
     EXPECT_LE((s.r2_W - Eigen::Vector3d(-std::cos(theta1), std::sin(theta1), 0)).norm(), 1e-14);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "sinew/core/error.hpp"
@@ -125,18 +126,24 @@ TEST(ToolSetup, ForceSetFileAndAnalyzeToolReferencingIt) {
 TEST(ToolSetup, ToolTypeIsTheDocumentsObject) {
     const std::string analyze = writeSetup("analyze_with_comment.xml", R"(<OpenSimDocument Version="40000">
 <!-- made from <InverseDynamicsTool> results -->
-<AnalyzeTool name="so"><model_file>m.osim</model_file></AnalyzeTool></OpenSimDocument>
+<AnalyzeTool name="so"><model_file>m.osim</model_file><coordinates_file>q.mot</coordinates_file></AnalyzeTool>
+</OpenSimDocument>
 )");
-    EXPECT_EQ(readToolType(analyze), ToolType::Analyze);
+    const ToolSetup analyzeSetup = readToolSetup(analyze);
+    ASSERT_TRUE(std::holds_alternative<AnalyzeSetup>(analyzeSetup));
+    EXPECT_EQ(std::get<AnalyzeSetup>(analyzeSetup).name, "so");
     const std::string id = writeSetup("id_type.xml", R"(<OpenSimDocument Version="40000">
-<InverseDynamicsTool name="id"/></OpenSimDocument>
+<InverseDynamicsTool name="id"><model_file>m.osim</model_file><coordinates_file>q.mot</coordinates_file>
+</InverseDynamicsTool></OpenSimDocument>
 )");
-    EXPECT_EQ(readToolType(id), ToolType::InverseDynamics);
+    const ToolSetup idSetup = readToolSetup(id);
+    ASSERT_TRUE(std::holds_alternative<InverseDynamicsSetup>(idSetup));
+    EXPECT_EQ(std::get<InverseDynamicsSetup>(idSetup).name, "id");
     const std::string scale = writeSetup("scale.xml", R"(<OpenSimDocument Version="40000">
 
 <ScaleTool name="subject"/></OpenSimDocument>
 )");
-    EXPECT_TRUE(test::throwsErrorAt([&] { readToolType(scale); }, scale + ":3: ",
+    EXPECT_TRUE(test::throwsErrorAt([&] { readToolSetup(scale); }, scale + ":3: ",
                                     {"ScaleTool", "InverseDynamicsTool or AnalyzeTool"}, "a ScaleTool setup"));
 }
 

@@ -1,5 +1,6 @@
-// sinew's core wire geometry against Simbody's: the wire Force elements compute lengths, speeds and body
-// forces from Simbody's own kinematics, which must agree with the core's J, J u and -J^T f.
+// sinew's core wire geometry against Simbody's: the wire Force elements' lengths, speeds and body forces (core's
+// paths on Simbody's body poses), mapped by Simbody's own system Jacobian, must agree with the core's J, J u
+// and -J^T f. (Against a polyline from Simbody's station kinematics alone: test_wire_paths.cpp.)
 #include <gtest/gtest.h>
 
 #include <random>

@@ -187,9 +187,7 @@ TEST(OsimResidualActuators, Gait2354ResidualsBalanceThePelvis) {
     for (Eigen::Index f = 0; f < motion.times.size(); ++f) {
         const Eigen::VectorXd q = motion.q.row(f).transpose(), u = motion.qdot.row(f).transpose(),
                               udot = motion.qddot.row(f).transpose();
-        std::fill(loads.begin(), loads.end(), SpatialVector::Zero());
-        calcPositionKinematics(model, data, q);
-        measured.addLinkForces(data, motion.times[f], loads);
+        calcAppliedLinkForces(model, &measured, data, motion.times[f], q, loads);
         bareOptimal += bare.calcFrame(q, u, udot, loads).status == DistributionStatus::Optimal;
         const TensionFrame& frame = withResiduals.calcFrame(q, u, udot, loads);
         optimal += frame.status == DistributionStatus::Optimal;

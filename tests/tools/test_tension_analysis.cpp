@@ -16,7 +16,7 @@
 #include "sinew/core/random_model.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
-#include "sinew/tools/model_loading.hpp"
+#include "sinew/io/model_loading.hpp"
 #include "sinew/tools/tension_analysis.hpp"
 #include "sinew/tools/tension_motion.hpp"
 #include "support/test_models.hpp"

@@ -150,9 +150,11 @@ struct WrapObject {
     int quadrantSign = 0;
 };
 
-// How an ellipsoid chooses its wrapping plane (OpenSim's PathWrap method); spheres and cylinders wrap along
-// exact shortest paths whatever it says.
-enum class WrapMethod { Hybrid, Midpoint, Axial };
+// How a wrap is computed. Hybrid, Midpoint, Axial: OpenSim's PathWrap methods, which choose an ellipsoid's
+// wrapping plane (spheres and cylinders wrap along exact shortest paths whatever they say). MuJoCo: MuJoCo's
+// spatial-tendon wrapping (mju_wrap) over a sphere or an infinite cylinder, its side chosen by the optional
+// side site (docs/wire-paths.md, "MuJoCo wrapping").
+enum class WrapMethod { Hybrid, Midpoint, Axial, MuJoCo };
 const char* toString(WrapMethod method);
 
 // One entry of a wire's wrap list (OpenSim's PathWrap): the wire may wrap over `object` between its points
@@ -161,6 +163,11 @@ struct WireWrap {
     int object = 0;  // index into Model::getWrapObjects()
     int firstPoint = 0, lastPoint = 0;
     WrapMethod method = WrapMethod::Hybrid;
+    // MuJoCo's sidesite (MuJoCo method only): a point fixed on link sideSiteLink (the wrap object's link
+    // unless given otherwise), which moves with that link; it only picks the side.
+    bool hasSideSite = false;
+    int sideSiteLink = 0;
+    Eigen::Vector3d sideSite_B = Eigen::Vector3d::Zero();  // m, in sideSiteLink's frame, as given
 };
 
 struct ForceLawSpec {
@@ -179,8 +186,8 @@ struct Wire {
     std::vector<WirePointCondition> conditions;
     std::vector<WirePointMotion> motions;  // ordered by point
     std::vector<WireWrap> wraps;           // in the order OpenSim applies them
-    // Links whose joints move at least one of the wire's points or wrap objects, children before parents;
-    // Jacobian and force passes visit only these (derived at build).
+    // Links whose joints move at least one of the wire's points, wrap objects or side sites, children before
+    // parents; Jacobian and force passes visit only these (derived at build).
     std::vector<int> supportLinks;
 
     bool isPolyline() const { return conditions.empty() && motions.empty() && wraps.empty(); }

@@ -120,12 +120,16 @@ struct WrapObjectSpec {
     std::string where;
 };
 
-// OpenSim's PathWrap. The range counts the wire's points from 0 and is inclusive; absent ends are the
-// wire's first and last points.
+// OpenSim's PathWrap, or one wrap of a MuJoCo spatial tendon. The range counts the wire's points from 0 and
+// is inclusive; absent ends are the wire's first and last points. The MuJoCo method takes a sphere or a
+// cylinder and two adjacent points (lastPoint == firstPoint + 1), the one segment MuJoCo wraps.
 struct WireWrapSpec {
     std::string object;
     std::optional<int> firstPoint, lastPoint;
     WrapMethod method = WrapMethod::Hybrid;
+    // MuJoCo method only: the side site (m) in the frame of link sideSiteLink, empty for the wrap object's link.
+    std::optional<Eigen::Vector3d> sideSite;
+    std::string sideSiteLink;
     std::string where;
 };
 

@@ -35,6 +35,7 @@ struct VirtualLinkEquilibriumData {
     std::vector<int> links;        // the virtual links' model indices (nv)
     std::vector<int> wires;        // the wires with at least one point on a virtual link
     std::vector<int> slotOfLink;   // per model link: its position in `links`, or -1 for a real link
+    std::vector<std::vector<int>> wiresOfSlot;  // per virtual link: the wires with a point on it (a stiffness column's)
     // m, per virtual link: RMS distance of its wire points from its origin (1 m when all are at the origin).
     // Rotations are scaled by it (l dtheta, moment / l) so that every unknown is in m and every residual in N.
     std::vector<double> lengthScale;

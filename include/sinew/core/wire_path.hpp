@@ -33,6 +33,12 @@ Eigen::Vector3d calcWirePointLocation(const Model& model, const Wire& wire, int 
 // is clamped to its range (m per rad or m/m).
 double calcWirePointMotionRate(const Model& model, const WirePointMotion& motion, const Eigen::VectorXd& q);
 
+// What moving component `motion` of wire w adds to dL/du at its coordinate's u beyond the motion of its link:
+// dL/dp . R_GB e_axis dp_B/dq at the point's place on the path, 0 while the point is off it. A tension f
+// pushes that coordinate by -f times it. Needs calcWirePaths; for wires whose dL/du is not differentiated
+// numerically (their rows of Data::wireLengthGradient hold the whole dL/du).
+double calcWirePointMotionTerm(const Model& model, const Data& data, int w, const WirePointMotion& motion);
+
 // Tension of every wire (N, >= 0) from its force law at the lengths and speeds in `data`.
 void calcWireTensions(const Model& model, const Data& data, double time, Eigen::Ref<Eigen::VectorXd> tensions);
 

@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "sinew/io/osim_model.hpp"
@@ -73,13 +74,12 @@ struct OsimForceSet {
 };
 
 // Each throws ModelError at "file:line" naming the element and what was expected.
-// Which tool an OpenSim setup file holds: the type of its <OpenSimDocument>'s object. Throws at the
-// object's line for any other tool.
-enum class ToolType { InverseDynamics, Analyze };
-ToolType readToolType(const std::string& path);
-
 InverseDynamicsSetup readInverseDynamicsSetup(const std::string& path);
 AnalyzeSetup readAnalyzeSetup(const std::string& path);
 OsimForceSet readForceSetFile(const std::string& path);
+// Whichever tool the file holds, as the type of its <OpenSimDocument>'s object says; any other tool is
+// refused at the object's line.
+using ToolSetup = std::variant<InverseDynamicsSetup, AnalyzeSetup>;
+ToolSetup readToolSetup(const std::string& path);
 
 }  // namespace sinew

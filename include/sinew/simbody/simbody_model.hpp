@@ -1,10 +1,12 @@
 #pragma once
 // Builds a SimTK::MultibodySystem from a sinew Model: one MobilizedBody per link (Free, Ball, Pin, Weld
 // mobilizers, in the model's order so Simbody's q and u are sinew's), Constraint::Ball loop closures,
-// gravity, and one WireForce (Force::Custom) per wire. Virtual links are massless, which Simbody's bodies
-// cannot be: they get no mobilized body, and the wires through them one VirtualLinkWireForce that holds
-// them in quasi-static equilibrium. Virtual links come last in the model, so Simbody's q and u are then the
-// head of sinew's (the virtual links' entries follow from the equilibrium: calcCoordinates).
+// gravity, and one WireForce (Force::Custom) per wire, every path sinew's core computes included (wraps,
+// conditional and moving points), all evaluated once per state by a SimbodyWirePaths subsystem. Virtual
+// links are massless, which Simbody's bodies cannot be: they get no mobilized body, and the wires through
+// them one VirtualLinkWireForce that holds them in quasi-static equilibrium. Virtual links come last in the
+// model, so Simbody's q and u are then the head of sinew's (the virtual links' entries follow from the
+// equilibrium: calcCoordinates).
 #include "sinew/simbody/ndebug_guard.hpp"
 
 #include <Eigen/Core>
@@ -47,6 +49,8 @@ public:
     const WireForce& getWireForce(int wire) const;
     // The force element of the wires through virtual links; nullptr when there are none (or no wires).
     const VirtualLinkWireForce* getVirtualLinkWireForce() const { return virtualLinkWireForce_; }
+    // The wires' shared evaluation (paths, speeds, tensions per state); nullptr without wires.
+    const SimbodyWirePaths* getWirePaths() const { return wirePaths_; }
 
     // Every wire's tension (N) at a state realized to Velocity.
     Eigen::VectorXd calcWireTensions(const SimTK::State& state) const;
@@ -72,6 +76,7 @@ private:
     std::vector<SimTK::ConstraintIndex> loopConstraints_;
     std::vector<const WireForce*> wireImplementations_;  // nullptr for a wire through a virtual link
     const VirtualLinkWireForce* virtualLinkWireForce_ = nullptr;  // owned by the system
+    const SimbodyWirePaths* wirePaths_ = nullptr;                 // owned by the system
 };
 
 SimTK::Vector toSimTK(const Eigen::VectorXd& v);

@@ -35,4 +35,9 @@ private:
     std::vector<Load> loads_;
 };
 
+// The applied link forces of a frame at time t and coordinates q: none, or `loads`' when given (then with
+// position kinematics at q done into `data`, for the loads' frames). linkForces has one entry per link.
+void calcAppliedLinkForces(const Model& model, const MeasuredLoads* loads, Data& data, double t, const Eigen::VectorXd& q,
+                           std::vector<SpatialVector>& linkForces);
+
 }  // namespace sinew

@@ -112,7 +112,7 @@ private:
     Eigen::MatrixXd reserveColumns_;     // (nu x reserves) generalized force per unit reserve force
     std::vector<int> virtualLinksOnGround_;  // virtual links whose joints hang from ground
     std::vector<Eigen::FullPivLU<JointMotion>> virtualLinkMotion_;  // their motion subspaces, factorized per frame
-    Eigen::VectorXd rigidMotion_;            // (nu) workspace: u moving the body and those virtual links rigidly
+    Eigen::MatrixXd rigidMotion_;            // (nu x 6) workspace: per root mobility, u moving everything rigidly
     Eigen::VectorXd unbalanced_;             // (nu) per DOF, the generalized force no wire could balance if unactuated
     std::unique_ptr<LpSolver> lp_;
     std::unique_ptr<ActiveSetSolver> qp_;

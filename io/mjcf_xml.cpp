@@ -1,0 +1,209 @@
+#include "mjcf_xml.hpp"
+
+#include <tinyxml2.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <strings.h>
+
+#include "sinew/core/error.hpp"
+
+namespace sinew::mjcf {
+namespace fs = std::filesystem;
+
+const char* XmlElement::findAttribute(const char* name) const {
+    for (const auto& [key, value] : attributes)
+        if (key == name) return value.c_str();
+    return nullptr;
+}
+
+std::string XmlElement::getName() const {
+    const char* name = findAttribute("name");
+    return name ? name : "";
+}
+
+std::string XmlElement::describe() const {
+    const std::string name = getName();
+    return name.empty() ? tag : tag + " '" + name + "'";
+}
+
+void XmlElement::fail(const std::string& message) const { throw ModelError(where(), describe() + ": " + message); }
+
+namespace {
+
+void loadDocument(tinyxml2::XMLDocument& document, const std::string& path, const std::string& includedAt) {
+    const tinyxml2::XMLError status = document.LoadFile(path.c_str());
+    if (status == tinyxml2::XML_ERROR_FILE_NOT_FOUND || status == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED ||
+        status == tinyxml2::XML_ERROR_FILE_READ_ERROR)
+        throw ModelError(includedAt.empty() ? path : includedAt, "cannot open '" + path + "' for reading");
+    if (status != tinyxml2::XML_SUCCESS)
+        throw ModelError(path + ":" + std::to_string(document.ErrorLineNum()),
+                         std::string("malformed XML (") + document.ErrorStr() + ")");
+    if (!document.RootElement()) throw ModelError(path, "no XML element in the file");
+}
+
+// Expands one document's elements into the tree, following includes into their files.
+class TreeReader {
+public:
+    explicit TreeReader(const std::string& mainPath)
+        : mainFolder_(fs::path(mainPath).parent_path()), included_{fs::absolute(mainPath).lexically_normal()} {}
+
+    void appendChildren(const tinyxml2::XMLElement& source, const std::string& file, XmlElement& target) {
+        for (const tinyxml2::XMLElement* child = source.FirstChildElement(); child; child = child->NextSiblingElement()) {
+            XmlElement element = convert(*child, file);
+            if (strcasecmp(child->Name(), "include") == 0) {
+                appendIncluded(element, *child, target);
+                continue;
+            }
+            appendChildren(*child, file, element);
+            target.children.push_back(std::move(element));
+        }
+    }
+
+    static XmlElement convert(const tinyxml2::XMLElement& source, const std::string& file) {
+        XmlElement element;
+        element.tag = source.Name();
+        for (const tinyxml2::XMLAttribute* a = source.FirstAttribute(); a; a = a->Next())
+            element.attributes.emplace_back(a->Name(), a->Value());
+        element.file = file;
+        element.line = source.GetLineNum();
+        return element;
+    }
+
+private:
+    void appendIncluded(const XmlElement& include, const tinyxml2::XMLElement& source, XmlElement& target) {
+        if (source.FirstChild()) include.fail("an include cannot have children");
+        const std::optional<std::string> name = readText(include, "file");
+        if (!name || name->empty()) include.fail("needs the file attribute naming the file to include");
+        const fs::path path = resolve(include, *name);
+        const fs::path absolute = fs::absolute(path).lexically_normal();
+        for (const fs::path& earlier : included_)
+            if (earlier == absolute) include.fail("'" + path.string() + "' is already included");
+        included_.push_back(absolute);
+        tinyxml2::XMLDocument document;
+        loadDocument(document, path.string(), include.where());
+        if (!document.RootElement()->FirstChildElement())
+            include.fail("'" + path.string() + "' holds no element under its root <" +
+                         document.RootElement()->Name() + ">");
+        appendChildren(*document.RootElement(), path.string(), target);
+    }
+
+    fs::path resolve(const XmlElement& include, const std::string& name) const {
+        const fs::path file(name);
+        if (file.is_absolute()) {
+            if (fs::is_regular_file(file)) return file;
+            include.fail("'" + name + "' does not exist");
+        }
+        const fs::path fromMain = (mainFolder_ / file).lexically_normal();
+        if (fs::is_regular_file(fromMain)) return fromMain;
+        const fs::path fromIncluding = (fs::path(include.file).parent_path() / file).lexically_normal();
+        if (fs::is_regular_file(fromIncluding)) return fromIncluding;
+        include.fail("'" + name + "' is neither at " + fromMain.string() + " (relative to the main file) nor at " +
+                     fromIncluding.string() + " (relative to this file)");
+    }
+
+    fs::path mainFolder_;
+    std::vector<fs::path> included_;  // absolute paths; MuJoCo refuses a file included twice
+};
+
+[[noreturn]] void failAttribute(const XmlElement& element, const char* name, const std::string& message) {
+    element.fail(std::string("attribute '") + name + "': " + message);
+}
+
+}  // namespace
+
+XmlElement readMjcfTree(const std::string& path) {
+    tinyxml2::XMLDocument document;
+    loadDocument(document, path, "");
+    const tinyxml2::XMLElement& root = *document.RootElement();
+    XmlElement tree = TreeReader::convert(root, path);
+    if (strcasecmp(root.Name(), "mujoco") != 0)
+        throw ModelError(tree.where(), "the root element is <" + tree.tag + ">; an MJCF file has <mujoco>");
+    TreeReader(path).appendChildren(root, path, tree);
+    return tree;
+}
+
+int readNumbers(const XmlElement& element, const char* name, double* values, int count, bool exact) {
+    const char* text = element.findAttribute(name);
+    if (!text) return 0;
+    std::istringstream tokens(text);
+    std::string token;
+    int read = 0;
+    while (tokens >> token) {
+        if (read == count)
+            failAttribute(element, name, "'" + std::string(text) + "' has more than " + std::to_string(count) +
+                                             (count == 1 ? " number" : " numbers"));
+        char* end = nullptr;
+        const double value = std::strtod(token.c_str(), &end);
+        if (end != token.c_str() + token.size()) failAttribute(element, name, "'" + token + "' is not a number");
+        if (!std::isfinite(value)) failAttribute(element, name, "'" + token + "' is not a finite number");
+        values[read++] = value;
+    }
+    if (read == 0 || (exact && read < count))
+        failAttribute(element, name, "'" + std::string(text) + "': expected " +
+                                         (exact ? std::to_string(count) : "1 to " + std::to_string(count)) +
+                                         (count == 1 ? " number" : " numbers"));
+    return read;
+}
+
+bool readNumber(const XmlElement& element, const char* name, double& value) {
+    return readNumbers(element, name, &value, 1) > 0;
+}
+
+bool readVector3(const XmlElement& element, const char* name, Eigen::Vector3d& value) {
+    return readNumbers(element, name, value.data(), 3) > 0;
+}
+
+bool readInt(const XmlElement& element, const char* name, int& value) {
+    double number = 0;
+    if (!readNumber(element, name, number)) return false;
+    if (number != std::floor(number) || std::abs(number) > 1e9)
+        failAttribute(element, name, "'" + std::string(element.findAttribute(name)) + "' is not a whole number");
+    value = static_cast<int>(number);
+    return true;
+}
+
+bool readBool(const XmlElement& element, const char* name, bool& value) {
+    const int keyword = readKeyword(element, name, {"false", "true"});
+    if (keyword < 0) return false;
+    value = keyword == 1;
+    return true;
+}
+
+std::optional<std::string> readText(const XmlElement& element, const char* name) {
+    const char* text = element.findAttribute(name);
+    if (!text) return std::nullopt;
+    return std::string(text);
+}
+
+int readKeyword(const XmlElement& element, const char* name, const std::vector<const char*>& keywords) {
+    const char* text = element.findAttribute(name);
+    if (!text) return -1;
+    std::string known;
+    for (std::size_t i = 0; i < keywords.size(); ++i) {
+        if (std::string(text) == keywords[i]) return static_cast<int>(i);
+        known += (i == 0 ? "" : i + 1 == keywords.size() ? " or " : ", ") + std::string(keywords[i]);
+    }
+    failAttribute(element, name, "'" + std::string(text) + "': expected " + known);
+}
+
+std::string describeAt(const std::string& kind, const std::string& name, const std::string& where) {
+    return (name.empty() ? kind : kind + " '" + name + "'") + " (" + where + ")";
+}
+
+std::string formatNumber(double value) {
+    std::ostringstream text;
+    text << value;
+    return text.str();
+}
+
+bool readTrueFalseAuto(const XmlElement& element, const char* name, int& value) {
+    const int keyword = readKeyword(element, name, {"false", "true", "auto"});
+    if (keyword < 0) return false;
+    value = keyword;
+    return true;
+}
+
+}  // namespace sinew::mjcf
