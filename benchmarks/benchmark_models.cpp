@@ -12,6 +12,7 @@
 #include "sinew/core/forward_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/random_model.hpp"
+#include "sinew/core/virtual_link_equilibrium.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
 #include "sinew/io/model_file.hpp"
@@ -50,6 +51,9 @@ std::vector<ModelSpec> getModelTable() {
     std::vector<ModelSpec> table;
     table.push_back({"arm26", "arm26", "wires", true,
                      [] { return sinew::readModelFile(SINEW_SOURCE_DIR "/models/arm26.yaml"); }});
+    // sinew's shipped whole-body wire model (models/whole_body; docs/whole-body-model.md), virtual links and all.
+    table.push_back({"whole_body_model", "whole_body_model", "shipped", true,
+                     [] { return sinew::readModelFile(SINEW_SOURCE_DIR "/models/whole_body/whole_body.yaml"); }});
     // The whole human body's size (53 links, 162 dof, 4 loops, 547 wires), and the same tree with fewer
     // features, to show what each costs. The tree does not depend on the loops and wires drawn after it.
     for (const auto& [suffix, variant, numLoops, numWires] :
@@ -121,18 +125,23 @@ void ModelFixture::prepare() {
         state = projected;
         break;
     }
+    // Virtual links have no body in Simbody (they come last in sinew's u) and take no generalized force.
+    const int nuSimbody = state.getNU();
     tau_ = sinew::generateRandomSpeeds(model_, rng, 5.0);
-    generalizedForces.setAllMobilityForces(state, sinew::toSimTK(tau_));
+    tau_.tail(model_.getNumU() - nuSimbody).setZero();
+    generalizedForces.setAllMobilityForces(state, sinew::toSimTK(Eigen::VectorXd(tau_.head(nuSimbody))));
     system.realize(state, SimTK::Stage::Acceleration);
-    q_ = sinew::toEigen(state.getQ());
-    u_ = sinew::toEigen(state.getU());
-    const Eigen::VectorXd udotSimbody = sinew::toEigen(state.getUDot());
+    simbody_->calcCoordinates(state, q_, u_);  // the virtual links at Simbody's equilibrium
+    Eigen::VectorXd udotSimbody = Eigen::VectorXd::Zero(model_.getNumU());
+    udotSimbody.head(nuSimbody) = sinew::toEigen(state.getUDot());
 
     sinew::Data data(model_);
     sinew::calcPositionKinematics(model_, data, q_);
     sinew::calcVelocityKinematics(model_, data, u_);
     sinew::calcWirePaths(model_, data);
     sinew::calcWireSpeeds(model_, data);
+    sinew::VirtualLinkEquilibriumData equilibrium(model_);
+    sinew::calcVirtualLinkEquilibrium(model_, data, state.getTime(), equilibrium);
     Eigen::VectorXd tensions(model_.getNumWires());
     sinew::calcWireTensions(model_, data, state.getTime(), tensions);
     sinew::calcWireLinkForces(model_, data, tensions);
