@@ -37,8 +37,8 @@ const Model& getShippedModel() {
     return model;
 }
 
-// Of the peak kinetic energy. Both engines' energies step by the same 8.4e-6 J in the first 0.01 s (a length that
-// still jumps by MuJoCo's wrap rules somewhere, not integration error): see docs/validation.md.
+// Of the peak kinetic energy. Both engines' energies step by the same 8.4e-6 J in the first 0.01 s, whatever the
+// step (not integration error; its cause is open): see docs/validation.md.
 constexpr double kEnergyBound = 1e-5;
 
 WholeBodyBuild deriveFromSource(const WholeBodyRules& rules) {
