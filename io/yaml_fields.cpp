@@ -82,16 +82,20 @@ Eigen::Vector3d YamlFields::readVector3(const YAML::Node& node, const std::strin
     return Eigen::Vector3d(v[0], v[1], v[2]);
 }
 
+YAML::Node parseYamlText(const std::string& text, const std::string& source) {
+    try {
+        return YAML::Load(text);
+    } catch (const YAML::ParserException& e) {
+        throw ModelError(source + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
+    }
+}
+
 YAML::Node loadYamlFile(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw ModelError(path, "cannot open file");
     std::stringstream text;
     text << in.rdbuf();
-    try {
-        return YAML::Load(text.str());
-    } catch (const YAML::ParserException& e) {
-        throw ModelError(path + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
-    }
+    return parseYamlText(text.str(), path);
 }
 
 }  // namespace sinew

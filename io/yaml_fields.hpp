@@ -33,7 +33,9 @@ private:
     std::string source_;
 };
 
-// Parses a YAML file, turning a syntax error or an unreadable file into a ModelError at "file:line".
+// Parses YAML text, turning a syntax error into a ModelError at "source:line".
+YAML::Node parseYamlText(const std::string& text, const std::string& source);
+// The same from a file, an unreadable one a ModelError naming it.
 YAML::Node loadYamlFile(const std::string& path);
 
 }  // namespace sinew

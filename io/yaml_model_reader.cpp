@@ -335,13 +335,7 @@ private:
 };
 
 Model readDocument(const std::string& text, const std::string& source) {
-    YAML::Node root;
-    try {
-        root = YAML::Load(text);
-    } catch (const YAML::ParserException& e) {
-        throw ModelError(source + ":" + std::to_string(e.mark.line + 1), "YAML syntax error: " + e.msg);
-    }
-    return Reader(source).read(root);
+    return Reader(source).read(parseYamlText(text, source));
 }
 
 }  // namespace

@@ -250,7 +250,7 @@ private:
             spec.shape = object.shape;
             spec.link = groupOf(object.link);
             const Eigen::Matrix3d R_GW = data_.R_GB[object.link] * object.R_BW;
-            spec.xyzBodyRotation = calcBodyFixedXYZ(R_GW);
+            spec.xyzBodyRotation = R_GW.eulerAngles(0, 1, 2);  // R = Rx Ry Rz, as the MJCF importer writes them
             spec.translation = toLink(spec.link, data_.p_GB[object.link] + data_.R_GB[object.link] * object.p_BW);
             spec.radius = object.radius;
             spec.length = object.length;
@@ -258,12 +258,6 @@ private:
             spec.quadrant = quadrantName(object);
             builder.addWrapObject(spec);
         }
-    }
-
-    // Body-fixed X-Y-Z angles of R = Rx(a) Ry(b) Rz(c).
-    static Eigen::Vector3d calcBodyFixedXYZ(const Eigen::Matrix3d& R) {
-        const double b = std::asin(std::clamp(R(0, 2), -1.0, 1.0));
-        return {std::atan2(-R(1, 2), R(2, 2)), b, std::atan2(-R(0, 1), R(0, 0))};
     }
 
     void addLoops(ModelBuilder& builder) const {
@@ -282,18 +276,22 @@ private:
         }
     }
 
+    // A source wire's own points at neutral, on their new links.
+    std::vector<NeutralPoint> getNeutralPoints(const Wire& wire) const {
+        std::vector<NeutralPoint> points;
+        for (int i = 0; i < wire.numPoints; ++i) {
+            const int p = wire.firstPoint + i;
+            points.push_back({groupOf(source_.getWirePoints()[p].link), data_.p_GP[p]});
+        }
+        return points;
+    }
+
     // The path of a source wire at neutral, as the points it passes (a wrap's tangent points included, on
     // the wrap object's link).
     std::vector<NeutralPoint> getNeutralPath(int w) const {
         const Wire& wire = source_.getWire(w);
+        if (wire.isPolyline()) return getNeutralPoints(wire);
         std::vector<NeutralPoint> path;
-        if (wire.isPolyline()) {
-            for (int i = 0; i < wire.numPoints; ++i) {
-                const int p = wire.firstPoint + i;
-                path.push_back({groupOf(source_.getWirePoints()[p].link), data_.p_GP[p]});
-            }
-            return path;
-        }
         // A wrap that touches its object at a path point (an end on the surface) repeats that point.
         for (int i = 0; i < data_.wirePathSize[w]; ++i) {
             const Data::WirePathPoint& point = data_.wirePath[data_.wirePathStart[w] + i];
@@ -422,13 +420,7 @@ private:
             if (!wire.conditions.empty() || !wire.motions.empty())
                 fail("", "source wire '" + wire.name + "' has conditional or moving points, which links cannot keep");
             const bool unwrap = unwrapped.count(wire.name) > 0;
-            std::vector<NeutralPoint> points;
-            if (unwrap) points = getNeutralPath(w);
-            for (int i = 0; i < wire.numPoints && !unwrap; ++i) {
-                const int p = wire.firstPoint + i;
-                points.push_back({groupOf(source_.getWirePoints()[p].link), data_.p_GP[p]});
-            }
-            WireSpec spec = makeWire(wire.name, wire.kind, points, "");
+            WireSpec spec = makeWire(wire.name, wire.kind, unwrap ? getNeutralPath(w) : getNeutralPoints(wire), "");
             for (const WireWrap& wrap : wire.wraps)
                 if (!unwrap) spec.wraps.push_back(convertWrap(wrap));
             const double length = data_.wireLength[w];
@@ -515,10 +507,13 @@ private:
             const std::vector<NeutralPoint> points = {{parent->second, at + rule.halfSpan * bone},
                                                       {rule.joint, at - rule.halfSpan * bone}};
             // The pair across d bends about f, the pair across f about d; the stretching side is the limit.
+            // Cartilage is pre-tensioned instead, with no limit.
             const Eigen::Vector3d axis = k < 2 ? f : d;
             const double angle = k < 2 ? rule.flexion : rule.abduction;
-            const double atLimit = std::max(calcLengthTurned(rule.joint, axis, angle, points),
-                                            calcLengthTurned(rule.joint, axis, -angle, points));
+            const double atLimit = rule.kind != WireKind::Ligament
+                                       ? 0.0
+                                       : std::max(calcLengthTurned(rule.joint, axis, angle, points),
+                                                  calcLengthTurned(rule.joint, axis, -angle, points));
             addPassiveWire(builder, rule.name + "_" + rule.names[static_cast<std::size_t>(k)], rule.kind, points,
                            atLimit, rule.where);
         }
