@@ -61,8 +61,13 @@ void requireRotation(const std::string& where, const std::string& what, const Ei
         throw ModelError(where, what + " must be a rotation matrix (orthonormal, determinant +1)");
 }
 
-// A custom joint's axes and coordinates: six non-zero axes, rotation axes (and translation axes) pairwise
-// non-collinear as OpenSim's CustomJoint requires (|a x b| >= 1e-5 for the unit axes), every coordinate
+// OpenSim's CustomJoint threshold for axes that are not independent: |a x b| < 1e-5 for the unit axes.
+bool areCollinear(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return a.normalized().cross(b.normalized()).norm() < 1e-5;
+}
+
+// A custom joint's axes and coordinates: six non-zero axes, rotation axes pairwise non-collinear as
+// OpenSim's CustomJoint requires, every coordinate
 // named by an axis declared, and every declared coordinate used by some axis.
 void checkCustomJoint(const JointSpec& js, const std::string& label) {
     if (js.transformAxes.size() != 6)
@@ -100,16 +105,34 @@ void checkCustomJoint(const JointSpec& js, const std::string& label) {
                              label + ": coordinate '" + c.name + "' drives none of the joint's transform axes");
     if (js.coordinates.empty())
         throw ModelError(js.where, label + ": a custom joint needs at least one coordinate (use a weld joint for none)");
-    for (int group = 0; group < 6; group += 3)
-        for (int a = group; a < group + 3; ++a)
-            for (int b = a + 1; b < group + 3; ++b) {
-                const Eigen::Vector3d u = js.transformAxes[static_cast<std::size_t>(a)].axis.normalized();
-                const Eigen::Vector3d v = js.transformAxes[static_cast<std::size_t>(b)].axis.normalized();
-                if (u.cross(v).norm() < 1e-5)
-                    throw ModelError(js.where, label + ": " + axisNames[a] + " and " + axisNames[b] +
-                                                   " are collinear; a custom joint's rotation axes, and its "
-                                                   "translation axes, must be independent");
-            }
+    for (int a = 0; a < 3; ++a)
+        for (int b = a + 1; b < 3; ++b)
+            if (areCollinear(js.transformAxes[static_cast<std::size_t>(a)].axis,
+                             js.transformAxes[static_cast<std::size_t>(b)].axis))
+                throw ModelError(js.where, label + ": " + axisNames[a] + " and " + axisNames[b] +
+                                               " are collinear; a custom joint's rotation axes must be independent");
+}
+
+// Translations along collinear axes add up (MuJoCo's slides along one axis, each coupled to the knee angle),
+// so kinematics take them; but two free coordinates moving the body the same way make the joint's inertia
+// singular, so a coupler must drive one of each such pair. Checked once the couplers are known.
+void checkCollinearTranslations(const Model& model, const JointSpec& js, const Joint& joint, const std::string& label) {
+    static const char* const axisNames[] = {"translation1", "translation2", "translation3"};
+    auto isCoupled = [&](int coordinate) {
+        for (const CoordinateCoupler& c : model.getCouplers())
+            if (c.dependentQ == joint.qStart + coordinate) return true;
+        return false;
+    };
+    for (int a = 3; a < 6; ++a)
+        for (int b = a + 1; b < 6; ++b) {
+            const TransformAxis& u = joint.transformAxes[static_cast<std::size_t>(a)];
+            const TransformAxis& v = joint.transformAxes[static_cast<std::size_t>(b)];
+            if (u.coordinate == kNoCoordinate || v.coordinate == kNoCoordinate || !areCollinear(u.axis, v.axis)) continue;
+            if (u.coordinate != v.coordinate && !isCoupled(u.coordinate) && !isCoupled(v.coordinate))
+                throw ModelError(js.where, label + ": " + axisNames[a - 3] + " and " + axisNames[b - 3] +
+                                               " are collinear and neither coordinate is driven by a coupler; a custom "
+                                               "joint's free translation axes must be independent");
+        }
 }
 
 // OpenSim's rule (CustomJoint::constructCoordinates): a coordinate that drives some axis through a linear
@@ -554,6 +577,9 @@ Model ModelBuilder::build() const {
         }
         model.couplers_.push_back({cs.name, dq, du, iq, iu, cs.function, cs.scaleFactor});
     }
+    for (std::size_t k = 0; k < order.size(); ++k)
+        if (model.joints_[k].type == JointType::Custom)
+            checkCollinearTranslations(model, joints_[order[k]], model.joints_[k], "joint '" + model.joints_[k].name + "'");
 
     std::map<std::string, std::string> wireWhere;
     for (const WireSpec& ws : wires_) {

@@ -1,5 +1,6 @@
 #include "mjcf_joints.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 #include "sinew/core/error.hpp"
@@ -11,10 +12,19 @@ constexpr double kCollinear = 1e-5;  // |a x b| of unit axes below which sinew's
 
 bool areCollinear(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.cross(b).norm() < kCollinear; }
 
-// A slide along the axis of an earlier slide of the same body: sinew's custom joint needs independent
-// translation axes, so only the first of them becomes a coordinate.
-bool isRedundantSlide(const MjcfBody& body, std::size_t j) {
-    if (body.joints[j].type != JointKind::Slide) return false;
+// Whether joint `joint` is the dependent joint (joint1) of an active joint equality with a second joint: a
+// coupler in sinew.
+bool isCoupledJoint(const MjcfModel& model, const std::string& joint) {
+    for (const MjcfEquality& e : model.equalities)
+        if (e.tag == "joint" && e.active && e.name1 == joint && !e.name2.empty()) return true;
+    return false;
+}
+
+// A slide along the axis of an earlier slide of the same body that no equality couples to another joint:
+// collinear slides add up, but two free ones would make the joint's inertia singular, so sinew keeps only
+// the first of them as a coordinate. Coupled ones (MS-Human-700's knee translations) stay coordinates.
+bool isHeldSlide(const MjcfModel& model, const MjcfBody& body, std::size_t j) {
+    if (body.joints[j].type != JointKind::Slide || isCoupledJoint(model, body.joints[j].name)) return false;
     for (std::size_t k = 0; k < j; ++k)
         if (body.joints[k].type == JointKind::Slide && areCollinear(body.joints[k].axis, body.joints[j].axis))
             return true;
@@ -30,22 +40,32 @@ Eigen::Vector3d toRotationVector(const Eigen::Quaterniond& q) {
     return angleAxis.angle() * angleAxis.axis();
 }
 
-// Axes completing `used` (unit, pairwise independent) to three independent ones, for the custom joint's
-// slots without a coordinate.
+// Axes completing `used` (unit; rotations pairwise independent, translations possibly collinear) to three,
+// for the custom joint's slots without a coordinate: each new axis is independent of all before it.
 std::vector<Eigen::Vector3d> completeAxes(std::vector<Eigen::Vector3d> used) {
-    if (used.empty()) return {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ()};
-    if (used.size() == 1) {
-        Eigen::Index least = 0;
-        used[0].cwiseAbs().minCoeff(&least);
-        const Eigen::Vector3d b = used[0].cross(Eigen::Vector3d::Unit(least)).normalized();
-        used.push_back(b);
+    std::vector<Eigen::Vector3d> independent;
+    for (const Eigen::Vector3d& a : used)
+        if (std::none_of(independent.begin(), independent.end(), [&](const Eigen::Vector3d& b) { return areCollinear(a, b); }))
+            independent.push_back(a);
+    while (used.size() < 3) {
+        Eigen::Vector3d next;
+        if (independent.empty()) {
+            next = Eigen::Vector3d::Unit(static_cast<Eigen::Index>(used.size()));
+        } else if (independent.size() == 1) {
+            Eigen::Index least = 0;
+            independent[0].cwiseAbs().minCoeff(&least);
+            next = independent[0].cross(Eigen::Vector3d::Unit(least)).normalized();
+        } else {
+            next = independent[0].cross(independent[1]).normalized();
+        }
+        used.push_back(next);
+        independent.push_back(next);
     }
-    if (used.size() == 2) used.push_back(used[0].cross(used[1]).normalized());
     return used;
 }
 
 // Slides first, then hinges about one anchor, at most three of each (docs/mjcf-import.md).
-void checkCustomLayout(const MjcfBody& body) {
+void checkCustomLayout(const MjcfModel& model, const MjcfBody& body) {
     int hinges = 0, slides = 0;
     const MjcfJoint* firstHinge = nullptr;
     for (std::size_t j = 0; j < body.joints.size(); ++j) {
@@ -66,22 +86,22 @@ void checkCustomLayout(const MjcfBody& body) {
                                    ") turn about collinear axes; sinew's custom joint needs independent rotation axes");
             if (!firstHinge) firstHinge = &joint;
             ++hinges;
-        } else if (!isRedundantSlide(body, j)) {
+        } else if (!isHeldSlide(model, body, j)) {
             ++slides;
         }
     }
     if (hinges > 3 || slides > 3)
         failBody(body, std::to_string(hinges) + " hinges and " + std::to_string(slides) +
-                       " independent slides; sinew's custom joint takes at most three of each");
+                       " slides (beyond those held at their ref); sinew's custom joint takes at most three of each");
 }
 
 // The transform axes of one kind (rotations: hinges; translations: slides) in joint order, completed by
 // constant axes. A coordinate equals MuJoCo's qpos: the displacement is qpos - ref.
-void addTransformAxes(const MjcfBody& body, JointKind kind, JointSpec& spec) {
+void addTransformAxes(const MjcfModel& model, const MjcfBody& body, JointKind kind, JointSpec& spec) {
     std::vector<Eigen::Vector3d> axes;
     std::vector<const MjcfJoint*> joints;
     for (std::size_t j = 0; j < body.joints.size(); ++j)
-        if (body.joints[j].type == kind && !isRedundantSlide(body, j)) {
+        if (body.joints[j].type == kind && !isHeldSlide(model, body, j)) {
             axes.push_back(body.joints[j].axis);
             joints.push_back(&body.joints[j]);
         }
@@ -111,8 +131,8 @@ CoordinateSpec convertCoordinate(const MjcfJoint& joint) {
     return c;
 }
 
-void convertCustomJoint(const MjcfBody& body, JointSpec& spec) {
-    checkCustomLayout(body);
+void convertCustomJoint(const MjcfModel& model, const MjcfBody& body, JointSpec& spec) {
+    checkCustomLayout(model, body);
     Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
     for (const MjcfJoint& joint : body.joints)
         if (joint.type == JointKind::Hinge) {
@@ -124,10 +144,10 @@ void convertCustomJoint(const MjcfBody& body, JointSpec& spec) {
     spec.R_PF = body.quat.toRotationMatrix();
     spec.p_BM = anchor;
     spec.R_BM = Eigen::Matrix3d::Identity();
-    addTransformAxes(body, JointKind::Hinge, spec);
-    addTransformAxes(body, JointKind::Slide, spec);
+    addTransformAxes(model, body, JointKind::Hinge, spec);
+    addTransformAxes(model, body, JointKind::Slide, spec);
     for (std::size_t j = 0; j < body.joints.size(); ++j)
-        if (!isRedundantSlide(body, j)) spec.coordinates.push_back(convertCoordinate(body.joints[j]));
+        if (!isHeldSlide(model, body, j)) spec.coordinates.push_back(convertCoordinate(body.joints[j]));
 }
 
 void notePassiveProperties(const MjcfJoint& joint, std::vector<std::string>& notImported) {
@@ -178,14 +198,14 @@ JointSpec convertBodyJoints(const MjcfModel& model, int body, std::vector<std::s
             notImported.push_back(describeAt("joint", b.joints[0].name, b.joints[0].where) +
                                   ": the ball's cone limit: sinew's ball joints have no range");
     } else {
-        convertCustomJoint(b, spec);
+        convertCustomJoint(model, b, spec);
     }
     for (std::size_t j = 0; j < b.joints.size(); ++j) {
-        if (isRedundantSlide(b, j))
+        if (isHeldSlide(model, b, j))
             notImported.push_back(describeAt("joint", b.joints[j].name, b.joints[j].where) +
                                   ": a slide along the axis of an earlier slide of body '" + b.name +
-                                  "'; sinew's custom joint needs independent translation axes, so it stays at its "
-                                  "ref (" + formatNumber(b.joints[j].ref) + " m)");
+                                  "' that no joint equality couples; sinew keeps one free coordinate per "
+                                  "translation axis, so it stays at its ref (" + formatNumber(b.joints[j].ref) + " m)");
         notePassiveProperties(b.joints[j], notImported);
     }
     return spec;
@@ -204,7 +224,7 @@ std::vector<Eigen::Isometry3d> calcRestPoses(const MjcfModel& model) {
 }
 
 bool isImportedJoint(const MjcfModel& model, int body, int joint) {
-    return !isRedundantSlide(model.bodies[static_cast<std::size_t>(body)], static_cast<std::size_t>(joint));
+    return !isHeldSlide(model, model.bodies[static_cast<std::size_t>(body)], static_cast<std::size_t>(joint));
 }
 
 }  // namespace sinew::mjcf

@@ -20,14 +20,16 @@ std::string getLinkName(const MjcfModel& model, int body);
 // The joint connecting body `body` (not the world) to its parent. A layout sinew cannot express (a hinge
 // before a slide, hinges about different anchors, collinear hinges, a ball with other joints, a free joint
 // below the top level) throws ModelError at the body naming its joints. Lines for `notImported`: a slide
-// collinear with an earlier one (held at its ref), joint damping, stiffness, armature and friction.
+// collinear with an earlier one and coupled by no equality (held at its ref), joint damping, stiffness,
+// armature and friction.
 JointSpec convertBodyJoints(const MjcfModel& model, int body, std::vector<std::string>& notImported);
 
 // Each body's frame in the world at qpos0, where every joint sits at its ref: the bodies' own frames
 // composed down the tree (index 0, the world, is the identity).
 std::vector<Eigen::Isometry3d> calcRestPoses(const MjcfModel& model);
 
-// Whether joint `joint` of body `body` became a coordinate (false for a collinear slide held at its ref).
+// Whether joint `joint` of body `body` became a coordinate (false for a collinear, uncoupled slide held at
+// its ref).
 bool isImportedJoint(const MjcfModel& model, int body, int joint);
 
 }  // namespace sinew::mjcf

@@ -265,5 +265,34 @@ TEST(CustomJoint, BuilderRefusesBadJoints) {
                                     at, {"range"}, "range"));
 }
 
+
+// MuJoCo's knees slide twice along one axis, each slide coupled to the knee angle: the translations add up.
+// Two such slides left free would make the joint's inertia singular, so the builder asks for a coupler.
+TEST(CustomJoint, CollinearTranslationsAddUpWhenACouplerDrivesOne) {
+    auto build = [](bool coupled) {
+        ModelBuilder builder("collinear");
+        builder.addLink(makeLink("b"));
+        JointSpec joint = customJointOnGround("knee");
+        joint.where = "knee.xml:4";
+        joint.coordinates = {named("angle"), named("slide_a"), named("slide_b")};
+        const Eigen::Vector3d along = Eigen::Vector3d(1, 2, -0.5).normalized();
+        joint.transformAxes = {{Eigen::Vector3d::UnitZ(), "angle", {}}, {Eigen::Vector3d::UnitX(), "", {}},
+                               {Eigen::Vector3d::UnitY(), "", {}},      {along, "slide_a", {}},
+                               {Eigen::Vector3d::UnitZ(), "", {}},      {-2 * along, "slide_b", {}}};
+        builder.addJoint(joint);
+        if (coupled)
+            builder.addCoupler({"slide_b_of_angle", "slide_b", "angle", Function::linear(0.01, 0.002), 1, "knee.xml:9"});
+        return builder.build();
+    };
+    EXPECT_TRUE(test::throwsErrorAt([&] { build(false); }, "knee.xml:4",
+                                    {"translation1", "translation3", "collinear", "coupler"}, "free collinear slides"));
+    const Model model = build(true);
+    Data data(model);
+    const Eigen::VectorXd q = Eigen::Vector3d(0.7, 0.03, -0.011);
+    calcPositionKinematics(model, data, q);
+    const Eigen::Vector3d along = Eigen::Vector3d(1, 2, -0.5).normalized();
+    EXPECT_LE((data.p_GB[0] - (q[1] - q[2]) * along).norm(), 1e-15);  // the second axis points back, unit length
+}
+
 }  // namespace
 }  // namespace sinew

@@ -170,7 +170,7 @@ TEST(WholeBodyModel, BothEnginesAgreeOnTheUndampedHangAndConserveEnergy) {
     const Model model = deriveFromSource(rules).model;
     ForwardSimulationOptions options;
     options.hangBy = "head_neck";
-    options.duration = 0.04;  // before the next wrap whose length jumps by MuJoCo's rules (docs/validation.md)
+    options.duration = 0.1;  // the first 0.1 s, before the motion turns chaotic
     options.reportInterval = 0.01;
     options.accuracy = 1e-8;
     std::vector<Eigen::VectorXd> sinewQ, simbodyQ;
@@ -184,7 +184,7 @@ TEST(WholeBodyModel, BothEnginesAgreeOnTheUndampedHangAndConserveEnergy) {
     double worst = 0;
     for (std::size_t k = 0; k < sinewQ.size(); ++k)
         worst = std::max(worst, (sinewQ[k] - simbodyQ[k]).head(boneQ).cwiseAbs().maxCoeff());
-    std::printf("undamped whole-body hang, 0.04 s at accuracy 1e-8: max |dq| %.3g; energy drift sinew %.3g J, "
+    std::printf("undamped whole-body hang, 0.1 s at accuracy 1e-8: max |dq| %.3g; energy drift sinew %.3g J, "
                 "Simbody %.3g J, of peak kinetic energy %.3g J\n",
                 worst, sinewRun.maxEnergyDrift, simbodyRun.maxEnergyDrift, sinewRun.peakKineticEnergy);
     EXPECT_LE(worst, 1e-6);
