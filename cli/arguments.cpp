@@ -1,6 +1,9 @@
 #include "arguments.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "sinew/core/error.hpp"
 
@@ -10,10 +13,25 @@ double parseNumber(const std::string& option, const std::string& text) {
     try {
         std::size_t used = 0;
         const double value = std::stod(text, &used);
-        if (used == text.size()) return value;
+        if (used == text.size() && std::isfinite(value)) return value;
     } catch (const std::exception&) {
     }
-    throw Error(option + " expects a number, got '" + text + "'");
+    throw Error(option + " expects a finite number, got '" + text + "'");
+}
+
+void checkLowpassOption(double cutoffHz, const StorageTable& motion, const std::string& motionPath) {
+    if (cutoffHz < 0) return;
+    if (cutoffHz == 0) throw Error("--lowpass expects a cut-off > 0 Hz (leave it out for no filtering)");
+    double smallestStep = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 1; i < motion.times.size(); ++i)
+        smallestStep = std::min(smallestStep, motion.times[i] - motion.times[i - 1]);
+    const double nyquist = 0.5 / smallestStep;
+    if (cutoffHz >= nyquist) {
+        char text[160];
+        std::snprintf(text, sizeof text, "--lowpass %g Hz is at or above the Nyquist frequency %g Hz of ", cutoffHz,
+                      nyquist);
+        throw Error(text + motionPath + " (half its sampling rate, from its smallest time step)");
+    }
 }
 
 bool ArgumentReader::next() {
@@ -26,6 +44,12 @@ bool ArgumentReader::next() {
         return false;
     }
     return true;
+}
+
+double ArgumentReader::number() {
+    // The option's name before value() moves past it.
+    const std::string option = args_[i_];
+    return parseNumber(option, value());
 }
 
 const std::string& ArgumentReader::value() {

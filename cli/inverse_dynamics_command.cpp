@@ -45,7 +45,9 @@ int runInverseDynamicsCommand(const std::vector<std::string>& args) {
         if (!progress) progress.emplace("inverse dynamics", frames);
         progress->update(frame);
     };
-    const StorageTable result = runInverseDynamics(model, readStorageFile(motionPath), loads ? &*loads : nullptr, options);
+    const StorageTable motion = readStorageFile(motionPath);
+    checkLowpassOption(options.lowpassCutoffHz, motion, motionPath);
+    const StorageTable result = runInverseDynamics(model, motion, loads ? &*loads : nullptr, options);
     if (progress) progress->finish();
     const std::filesystem::path parent = std::filesystem::path(output).parent_path();
     if (!parent.empty()) std::filesystem::create_directories(parent);

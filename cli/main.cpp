@@ -21,13 +21,20 @@ const char* kUsage =
     "                                  listing what it leaves out\n"
     "  inverse-dynamics MODEL MOTION [--external-loads X.xml] [--lowpass HZ] -o OUT.sto\n"
     "                                  generalized forces per frame, processed as OpenSim's ID tool\n"
-    "  run-tool SETUP.xml [-o DIR]     runs an OpenSim InverseDynamicsTool or\n"
+    "  ik MODEL CAPTURE.trc [--setup IK_SETUP.xml] -o OUT.mot\n"
+    "                                  inverse kinematics of a marker capture (OpenSim's IK problem)\n"
+    "  run-tool SETUP.xml [-o DIR]     runs an OpenSim InverseDynamicsTool, InverseKinematicsTool or\n"
     "                                  AnalyzeTool (StaticOptimization) setup as it stands\n"
     "  moment-arms MODEL [--motion M] [-o DIR]   wire lengths and moment arms (OpenSim MuscleAnalysis files)\n"
     "  tensions MODEL MOTION --method lp|qp|so [--external-loads X.xml] [--lowpass HZ] -o TENSIONS.sto\n"
     "                                  wire tensions per frame (LP, least squares or static optimization)\n"
     "  whole-body SOURCE --rules R.yaml [--anthropometrics T.csv] -o MODEL.yaml\n"
     "                                  derives the whole-body wire model from MS-Human-700 by the rules\n"
+    "  render MODEL [--motion Q.sto] [--tensions T.sto] [--frame K | --time T | --strip N] -o OUT.png|.html\n"
+    "                                  the body with its wires coloured by tension (front and side views),\n"
+    "                                  or a browser page that plays the motion\n"
+    "  plot FILE.sto ... [--columns A,B] -o OUT.png | plot --benchmark RESULTS.json [--filter RE] -o OUT.png\n"
+    "                                  line plots of storage columns over time, benchmark scaling curves\n"
     "\n"
     "Run 'sinew COMMAND --help' for a command's options.\n";
 
@@ -45,10 +52,13 @@ int main(int argc, char** argv) {
         if (command == "simulate") return sinew::cli::runSimulate(args);
         if (command == "import") return sinew::cli::runImport(args);
         if (command == "inverse-dynamics") return sinew::cli::runInverseDynamicsCommand(args);
+        if (command == "ik") return sinew::cli::runInverseKinematicsCommand(args);
         if (command == "run-tool") return sinew::cli::runRunTool(args);
         if (command == "moment-arms") return sinew::cli::runMomentArms(args);
         if (command == "tensions") return sinew::cli::runTensions(args);
         if (command == "whole-body") return sinew::cli::runWholeBody(args);
+        if (command == "render") return sinew::cli::runRender(args);
+        if (command == "plot") return sinew::cli::runPlot(args);
         std::fprintf(stderr, "sinew: unknown command '%s'\n\n%s", command.c_str(), kUsage);
         return 2;
     } catch (const std::exception& e) {

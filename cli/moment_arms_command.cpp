@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -62,6 +63,15 @@ int runMomentArms(const std::vector<std::string>& args) {
         calcPositionKinematics(model, data, q);
         calcWirePaths(model, data);
         calcMomentArms(model, data, R);
+        // Named here, at the input row, rather than later as a cell of the output file.
+        if (!data.wireLength.allFinite() || !R.allFinite())
+            for (int w = 0; w < model.getNumWires(); ++w)
+                if (!std::isfinite(data.wireLength[w]) || !R.row(w).allFinite())
+                    throw Error((motionPath.empty() ? modelPath + ": at the default pose"
+                                                    : motionPath + ": row " + std::to_string(row + 1) + " (t = " +
+                                                          std::to_string(samples.times[row]) + " s)") +
+                                ": wire '" + model.getWire(w).name +
+                                "' has a non-finite length or moment arm (check its points and wrap objects)");
         lengths.times.push_back(samples.times[row]);
         lengths.rows.emplace_back(data.wireLength.data(), data.wireLength.data() + data.wireLength.size());
         for (std::size_t c = 0; c < speedNames.size(); ++c) {
@@ -75,14 +85,20 @@ int runMomentArms(const std::vector<std::string>& args) {
     progress.finish();
     std::filesystem::create_directories(outputDir);
     const std::filesystem::path dir(outputDir);
-    writeStorageFile(lengths, (dir / (model.getName() + "_Length.sto")).string());
+    OutputFileSet outputs;
+    writeStorageFile(lengths, outputs, (dir / (model.getName() + "_Length.sto")).string());
     int files = 1;
     for (std::size_t c = 0; c < speedNames.size(); ++c) {
-        if (!crossed[c]) continue;
+        const std::string path = (dir / (model.getName() + "_MomentArm_" + speedNames[c] + ".sto")).string();
+        if (!crossed[c]) {
+            outputs.retire(path);  // an earlier run's file for a coordinate this motion's wires no longer cross
+            continue;
+        }
         momentArms[c].name = model.getName() + " moment arms about " + speedNames[c] + " (m or m/m)";
-        writeStorageFile(momentArms[c], (dir / (model.getName() + "_MomentArm_" + speedNames[c] + ".sto")).string());
+        writeStorageFile(momentArms[c], outputs, path);
         ++files;
     }
+    outputs.commit();
     std::printf("%d wires, %zu rows: %d files in %s\n", model.getNumWires(), lengths.times.size(), files,
                 std::filesystem::absolute(dir).string().c_str());
     return 0;

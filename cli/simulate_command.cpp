@@ -1,6 +1,8 @@
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "arguments.hpp"
@@ -11,6 +13,7 @@
 #include "sinew/io/model_loading.hpp"
 #include "sinew/io/storage_file.hpp"
 #include "sinew/simbody/forward_simulation.hpp"
+#include "sinew/simbody/wire_decorations.hpp"
 
 namespace sinew::cli {
 namespace {
@@ -28,7 +31,13 @@ const char* kUsage =
     "  --duration T      simulated time, s (default 1)\n"
     "  --interval DT     time between output frames, s (default 0.01)\n"
     "  --accuracy A      adaptive integrator accuracy and constraint tolerance (default 1e-6)\n"
-    "  -o DIR            output folder (default sinew_output)\n";
+    "  --max-steps N     step budget: integrator steps tried in all (default 1e6)\n"
+    "  --min-step H      the run stops when the adaptive step falls below H, s (default 1e-12)\n"
+    "  --visualize       show the run in simbody-visualizer as it goes, wires coloured by tension\n"
+    "                    (needs a display)\n"
+    "  -o DIR            output folder (default sinew_output)\n"
+    "  A run that stops early (budget, collapsed step, non-finite state) writes the frames it reached as\n"
+    "  <model>_*_incomplete.sto, removes the complete files of an earlier run, and exits with status 1.\n";
 
 enum class Engine { Simbody, Sinew };
 
@@ -36,6 +45,7 @@ enum class Engine { Simbody, Sinew };
 
 int runSimulate(const std::vector<std::string>& args) {
     std::string modelPath, outputDir = "sinew_output";
+    bool visualize = false;
     ForwardSimulationOptions options;
     Engine engine = Engine::Simbody;
     ArgumentReader reader(args, kUsage);
@@ -55,12 +65,22 @@ int runSimulate(const std::vector<std::string>& args) {
         else if (reader.is("--duration")) options.duration = reader.number();
         else if (reader.is("--interval")) options.reportInterval = reader.number();
         else if (reader.is("--accuracy")) options.accuracy = reader.number();
+        else if (reader.is("--max-steps")) {
+            const double steps = reader.number();
+            if (!(steps >= 1 && steps <= 1e15 && steps == std::floor(steps)))
+                throw Error("--max-steps expects a whole number >= 1, got '" + std::to_string(steps) + "'");
+            options.maxSteps = static_cast<long>(steps);
+        } else if (reader.is("--min-step")) options.minStep = reader.number();
+        else if (reader.is("--visualize")) visualize = true;
         else if (reader.is("-o", "--output")) outputDir = reader.value();
         else reader.takePositional({&modelPath});
     }
     if (reader.helpShown()) return 0;
     if (modelPath.empty()) return reader.failWithUsage();
+    checkSimulationOptions(options);  // before the model loads: option errors first
     const Model model = loadModel(modelPath, [](const std::string& line) { std::printf("%s\n", line.c_str()); });
+    std::optional<SimulationVisualizer> visualizer;
+    if (visualize) visualizer.emplace(model, options.hangBy);
     std::filesystem::create_directories(outputDir);
 
     StorageTable coordinates{model.getName() + " coordinates", false, getCoordinateNames(model), {}, {}};
@@ -83,28 +103,54 @@ int runSimulate(const std::vector<std::string>& args) {
     std::printf("engine: %s (%s)\n", engine == Engine::Sinew ? "sinew" : "simbody", integratorText);
     Progress progress("simulate", options.duration);
     const auto simulate = engine == Engine::Sinew ? simulateForwardSinew : simulateForward;
-    const SimulationSummary summary = simulate(model, options, [&](const SimulationFrame& frame) {
-        auto append = [&](StorageTable& table, const Eigen::VectorXd& row) {
-            table.times.push_back(frame.time);
-            table.rows.emplace_back(row.data(), row.data() + row.size());
-        };
-        append(coordinates, frame.q);
-        append(speeds, frame.u);
-        append(tensions, frame.tensions);
-        append(energy, Eigen::Vector3d(frame.kineticEnergy, frame.potentialEnergy,
-                                       frame.kineticEnergy + frame.potentialEnergy));
-        progress.update(frame.time);
-    });
-    progress.finish();
-
     const std::filesystem::path dir(outputDir);
     const std::string stem = model.getName();
-    const std::string files[] = {(dir / (stem + "_coordinates.sto")).string(), (dir / (stem + "_speeds.sto")).string(),
-                                 (dir / (stem + "_tensions.sto")).string(), (dir / (stem + "_energy.sto")).string()};
-    writeStorageFile(coordinates, files[0]);
-    writeStorageFile(speeds, files[1]);
-    writeStorageFile(tensions, files[2]);
-    writeStorageFile(energy, files[3]);
+    const char* kinds[] = {"coordinates", "speeds", "tensions", "energy"};
+    StorageTable* tables[] = {&coordinates, &speeds, &tensions, &energy};
+    auto outputPath = [&](int k, bool incomplete) {
+        return (dir / (stem + "_" + kinds[k] + (incomplete ? "_incomplete" : "") + ".sto")).string();
+    };
+    // Writes the frames reached as the complete set or as the marked incomplete one, retiring the other.
+    auto writeOutputs = [&](bool incomplete, const std::string& why) {
+        OutputFileSet outputs;
+        for (int k = 0; k < 4; ++k) {
+            if (incomplete) {
+                tables[k]->header = {"incomplete: " + why};
+                tables[k]->name += " (INCOMPLETE)";
+            }
+            writeStorageFile(*tables[k], outputs, outputPath(k, incomplete));
+            outputs.retire(outputPath(k, !incomplete));
+        }
+        outputs.commit();
+    };
+    SimulationSummary summary;
+    try {
+        summary = simulate(model, options, [&](const SimulationFrame& frame) {
+            auto append = [&](StorageTable& table, const Eigen::VectorXd& row) {
+                table.times.push_back(frame.time);
+                table.rows.emplace_back(row.data(), row.data() + row.size());
+            };
+            append(coordinates, frame.q);
+            append(speeds, frame.u);
+            append(tensions, frame.tensions);
+            append(energy, Eigen::Vector3d(frame.kineticEnergy, frame.potentialEnergy,
+                                           frame.kineticEnergy + frame.potentialEnergy));
+            progress.update(frame.time);
+            if (visualizer) visualizer->show(frame);
+        });
+    } catch (const Error& e) {
+        progress.finish();
+        if (coordinates.times.empty()) throw;
+        std::string why = e.what();
+        std::replace(why.begin(), why.end(), '\n', ' ');
+        writeOutputs(true, why);
+        std::fprintf(stderr, "%zu frames up to t = %g s written as %s and the other *_incomplete.sto files\n",
+                     coordinates.times.size(), coordinates.times.back(),
+                     std::filesystem::absolute(outputPath(0, true)).string().c_str());
+        throw;
+    }
+    progress.finish();
+    writeOutputs(false, "");
 
     std::printf("%d frames, %d integrator steps, %.3f s wall: %.3g s per output frame, %.3g s per integrator step\n",
                 summary.frames, summary.steps, summary.wallSeconds, summary.wallSeconds / summary.frames,
@@ -118,7 +164,7 @@ int runSimulate(const std::vector<std::string>& args) {
                 summary.peakKineticEnergy > 0 ? summary.maxEnergyDrift / summary.peakKineticEnergy : 0.0,
                 summary.peakKineticEnergy);
     std::printf("output files:\n");
-    for (const std::string& file : files) std::printf("  %s\n", std::filesystem::absolute(file).string().c_str());
+    for (int k = 0; k < 4; ++k) std::printf("  %s\n", std::filesystem::absolute(outputPath(k, false)).string().c_str());
     return 0;
 }
 

@@ -64,14 +64,20 @@ int runTensions(const std::vector<std::string>& args) {
         progress->update(frame);
     };
     const StorageTable motion = readStorageFile(motionPath, NonFinite::Allow);
+    checkLowpassOption(options.lowpassCutoffHz, motion, motionPath);
     const TensionMotionResult result = runTensionAnalysis(model, motion, loads ? &*loads : nullptr, options);
     if (progress) progress->finish();
     const std::filesystem::path parent = std::filesystem::path(output).parent_path();
     if (!parent.empty()) std::filesystem::create_directories(parent);
-    writeStorageFile(result.tensions, output);
-    writeStorageFile(result.report, withSuffix(output, "_report"));
+    // One set: an earlier run's activations must not stay beside tensions of another method.
+    OutputFileSet outputs;
+    writeStorageFile(result.tensions, outputs, output);
+    writeStorageFile(result.report, outputs, withSuffix(output, "_report"));
     if (options.analysis.method == TensionMethod::StaticOptimization)
-        writeStorageFile(result.activations, withSuffix(output, "_activations"));
+        writeStorageFile(result.activations, outputs, withSuffix(output, "_activations"));
+    else
+        outputs.retire(withSuffix(output, "_activations"));
+    outputs.commit();
     std::printf("%zu frames, %zu wires (%s) -> %s\n", result.tensions.times.size(), result.tensions.columns.size(),
                 method.c_str(), output.c_str());
     if (!result.missingRows.empty()) {

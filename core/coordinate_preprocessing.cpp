@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -16,6 +17,16 @@ constexpr double kMaxResampledRows = 100000;
 
 // The degree of the splines Storage::lowpassIIR resamples uneven rows with.
 constexpr int kResampleDegree = 5;
+
+// Bounds on the rows' times: beyond them the splines' B-spline systems lose double precision.
+constexpr double kMaxTime = 1e9;       // s
+constexpr double kMinTimeStep = 1e-9;  // s
+
+std::string formatTime(double t) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", t);
+    return text;
+}
 
 std::string columnLabel(const CoordinatePreprocessingOptions& options, Eigen::Index j) {
     return options.columnNames.empty() ? "column " + std::to_string(j) : "column '" + options.columnNames[j] + "'";
@@ -49,7 +60,13 @@ void checkInput(const Eigen::VectorXd& times, const Eigen::MatrixXd& values, con
         throw Error(where + std::to_string(times.size()) + " rows; too few for the degree-" + std::to_string(degree) +
                     " splines" + (o.lowpassCutoffHz > 0 ? " after padding" : ""));
     for (Eigen::Index i = 0; i < times.size(); ++i) {
-        if (!std::isfinite(times(i))) throw Error(where + "the time of row " + std::to_string(i) + " is not finite");
+        if (!(std::abs(times(i)) <= kMaxTime))
+            throw Error(where + "the time of row " + std::to_string(i) + " (" + formatTime(times(i)) +
+                        " s) is not finite or beyond +-1e9 s");
+        if (i > 0 && times(i) - times(i - 1) < kMinTimeStep && times(i) > times(i - 1))
+            throw Error(where + "row " + std::to_string(i) + " (t = " + formatTime(times(i)) + " s) follows row " +
+                        std::to_string(i - 1) + " (t = " + formatTime(times(i - 1)) + " s) by less than 1e-9 s, closer "
+                        "than the splines resolve");
         if (i > 0 && !(times(i) > times(i - 1)))
             throw Error(where + "row " + std::to_string(i) + " (t = " + std::to_string(times(i)) +
                         " s) does not follow row " + std::to_string(i - 1) + " (t = " + std::to_string(times(i - 1)) +

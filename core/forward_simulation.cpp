@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "sinew/core/assembly_schedule.hpp"
@@ -304,6 +305,34 @@ const char* toString(ForwardSimulationOptions::Integrator integrator) {
     return "?";
 }
 
+long checkSimulationOptions(const ForwardSimulationOptions& options) {
+    auto require = [](bool ok, const char* option, double value, const char* expected) {
+        if (!ok) throw Error(std::string(option) + " " + formatTime(value) + ": expected " + expected);
+    };
+    const double finite = std::numeric_limits<double>::max();
+    require(options.duration > 0 && options.duration <= finite, "--duration", options.duration, "a finite time > 0 s");
+    require(options.reportInterval > 0 && options.reportInterval <= finite, "--interval", options.reportInterval,
+            "a finite time > 0 s");
+    require(options.accuracy > 0 && options.accuracy < 1, "--accuracy", options.accuracy, "a value in (0, 1)");
+    require(options.fixedStep > 0 && options.fixedStep <= finite, "--step", options.fixedStep, "a finite time > 0 s");
+    require(options.minStep > 0 && options.minStep <= finite, "--min-step", options.minStep, "a finite time > 0 s");
+    require(options.maxSteps > 0, "--max-steps", static_cast<double>(options.maxSteps), "a count > 0");
+    const double intervals = std::ceil(options.duration / options.reportInterval - 1e-9);
+    if (!(intervals + 1 <= static_cast<double>(kMaxSimulationFrames)))
+        throw Error("--duration " + formatTime(options.duration) + " s at --interval " +
+                    formatTime(options.reportInterval) + " s gives " + formatTime(intervals + 1) + " frames; at most " +
+                    std::to_string(kMaxSimulationFrames) + " (lengthen --interval)");
+    // Report times closer than this cannot be told apart once added to the time reached.
+    if (options.reportInterval < 1e3 * kTimeResolution * std::max(1.0, options.duration))
+        throw Error("--interval " + formatTime(options.reportInterval) + " s is below the time resolution at t = " +
+                    formatTime(options.duration) + " s");
+    return std::max(1L, static_cast<long>(intervals));
+}
+
+double getReportTime(const ForwardSimulationOptions& options, long i) {
+    return std::min(options.duration, static_cast<double>(i) * options.reportInterval);
+}
+
 double calcConstraintViolation(const Model& model, Data& data, const Eigen::VectorXd& q, int hangLink,
                                const Eigen::Vector3d& p_GH) {
     calcPositionKinematics(model, data, q);
@@ -320,10 +349,7 @@ double calcConstraintViolation(const Model& model, Data& data, const Eigen::Vect
 
 SimulationSummary simulateForwardSinew(const Model& model, const ForwardSimulationOptions& options,
                                        const std::function<void(const SimulationFrame&)>& onFrame) {
-    if (!(options.duration > 0) || !(options.reportInterval > 0) || !(options.accuracy > 0))
-        throw Error("simulation needs duration, report interval and accuracy > 0");
-    if (options.integrator == Integrator::RungeKutta4Fixed && !(options.fixedStep > 0))
-        throw Error("the fixed-step integrator needs a step > 0");
+    const long numReports = checkSimulationOptions(options);
     int hangLink = -1;
     if (!options.hangBy.empty()) {
         hangLink = model.findLinkIndex(options.hangBy);
@@ -402,13 +428,22 @@ SimulationSummary simulateForwardSinew(const Model& model, const ForwardSimulati
                    ? simulator.calcInitialStep(t, y, ydot, options.accuracy, options.reportInterval)
                    : options.fixedStep;
     report(t);
-    const int numReports = static_cast<int>(std::floor(options.duration / options.reportInterval + 1e-9));
-    for (int i = 1; i <= numReports; ++i) {
-        const double tReport = std::min(options.duration, i * options.reportInterval);
+    long attempts = 0;  // integrator steps tried, against options.maxSteps
+    auto spend = [&](double tNow, long steps) {
+        attempts += steps;
+        if (attempts > options.maxSteps)
+            throw Error("simulation stopped at t = " + formatTime(tNow) + " s: the step budget (--max-steps " +
+                        std::to_string(options.maxSteps) + ") ran out; the model may be too stiff (check its "
+                        "stiffnesses, damping and masses) or --max-steps too small");
+    };
+    for (long i = 1; i <= numReports; ++i) {
+        const double tReport = getReportTime(options, i);
         if (options.integrator == Integrator::RungeKutta4Fixed) {
             // Equal steps no longer than fixedStep, ending on the report time.
             const double span = tReport - t;
-            const int n = std::max(1, static_cast<int>(std::ceil(span / options.fixedStep - 1e-9)));
+            const double steps = std::ceil(span / options.fixedStep - 1e-9);
+            spend(t, static_cast<long>(std::min(steps, 1e18)));
+            const int n = std::max(1, static_cast<int>(steps));
             for (int k = 0; k < n; ++k) {
                 const double tk = t + span * k / n;
                 simulator.stepRungeKutta4(tk, span / n, y, ydot);
@@ -429,8 +464,12 @@ SimulationSummary simulateForwardSinew(const Model& model, const ForwardSimulati
                 // Land on the report time without leaving a sliver: the whole remainder, or half of it.
                 const bool toReport = remaining <= h;
                 const double hStep = toReport ? remaining : std::min(h, remaining <= 2 * h ? remaining / 2 : h);
-                if (hStep < kTimeResolution * std::max(1.0, t))
-                    throw Error("integration failed at t = " + formatTime(t) + " s: step size underflow");
+                if (hStep < std::max(options.minStep, kTimeResolution * std::max(1.0, t)))
+                    throw Error("simulation stopped at t = " + formatTime(t) + " s: the step size collapsed to " +
+                                formatTime(hStep) + " s (below --min-step " + formatTime(options.minStep) +
+                                " s); the model may be too stiff or diverging (check its stiffnesses, damping, "
+                                "masses and wire points)");
+                spend(t, 1);
                 const double err = simulator.tryDormandPrince(t, hStep, y, ydot, options.accuracy);
                 if (!std::isfinite(err))
                     throw Error("simulation diverged at t = " + formatTime(t) + " s (non-finite state)");

@@ -230,6 +230,14 @@ public:
     }
 
     SmoothingSpline makeSpline(const Trial& trial) const {
+        if (!trial.solved) {
+            // No smoothing parameter factored: the sites' spacing is beyond what double precision resolves.
+            Eigen::Index gap = 0;
+            (x_.tail(n_ - 1) - x_.head(n_ - 1)).minCoeff(&gap);
+            throw Error("smoothing spline: no fit in double precision for these sites; the closest are " +
+                        sample("x", gap, x_(gap)) + " and " + sample("x", gap + 1, x_(gap + 1)) + " over a span of " +
+                        std::to_string(x_(n_ - 1) - x_(0)) + " (sites too close together, too far apart or too large)");
+        }
         SmoothingSpline s;
         s.halfOrder_ = m_;
         s.x_ = x_;
@@ -314,7 +322,7 @@ NaturalSplineFitter::Trial minimize(const NaturalSplineFitter& fitter, Criterion
         return t.solved ? criterion(t) : std::numeric_limits<double>::infinity();
     };
     NaturalSplineFitter::Trial best = fitter.solve(0);
-    double bestValue = tryInterpolation ? criterion(best) : std::numeric_limits<double>::infinity(), bestE = lowest;
+    double bestValue = tryInterpolation ? valueOf(best) : std::numeric_limits<double>::infinity(), bestE = lowest;
     for (double e = lowest; e <= highest; e += step) {
         NaturalSplineFitter::Trial trial = trialAt(e);
         const double value = valueOf(trial);

@@ -7,6 +7,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/io/mjcf_model.hpp"
 #include "sinew/io/model_file.hpp"
+#include "sinew/io/osim_markers.hpp"
 #include "sinew/io/osim_model_converter.hpp"
 
 namespace sinew {
@@ -73,6 +74,11 @@ Model loadModel(const std::string& path, const std::function<void(const std::str
     OsimConversion conversion = convertOsimModel(readOsimModel(path));
     report(conversion.notImported);
     return std::move(conversion.model);
+}
+
+std::vector<Marker> loadMarkers(const std::string& path, const Model& model) {
+    if (detectModelFormat(path) != ModelFormat::OpenSim) return {};
+    return convertOsimMarkers(readOsimModel(path).markers, model);
 }
 
 }  // namespace sinew

@@ -128,6 +128,9 @@ std::string readText(const XmlDocument&, const Element& owner, const char* prope
     return element ? textOf(*element) : fallback;
 }
 
+// The bound of the YAML model format (io/yaml_fields.hpp), for the same reasons.
+constexpr double kMaxOsimMagnitude = 1e9;
+
 std::vector<double> readNumbers(const XmlDocument& doc, const Element& element) {
     // SimTK writes vectors as "~[1,2,3]" and some files wrap them in parentheses; both read as plain lists.
     std::string text = textOf(element);
@@ -141,6 +144,13 @@ std::vector<double> readNumbers(const XmlDocument& doc, const Element& element) 
         const double value = std::strtod(token.c_str(), &end);
         if (end != token.c_str() + token.size()) doc.fail(element, "'" + token + "' is not a number");
         if (std::isnan(value)) doc.fail(element, "NaN is not a value");
+        // OpenSim writes an actuator's absent control limit as Inf; nowhere else does sinew carry one.
+        const std::string name = element.Name();
+        if (std::isinf(value) && name != "min_control" && name != "max_control")
+            doc.fail(element, "<" + name + "> '" + token + "' is not a finite number");
+        if (std::isfinite(value) && std::abs(value) > kMaxOsimMagnitude)
+            doc.fail(element, "<" + name + "> " + token + " is beyond the magnitude 1e9 sinew bounds a model's "
+                              "numbers to (docs/model-format.md, \"Bounds\")");
         numbers.push_back(value);
     }
     return numbers;

@@ -52,7 +52,7 @@ std::string trim(const std::string& text);
 const Element* findChild(const Element& owner, const char* property);
 std::string readText(const XmlDocument& doc, const Element& owner, const char* property,
                      const std::string& fallback = "");
-std::vector<double> readNumbers(const XmlDocument& doc, const Element& element);  // finite or +-inf, never NaN
+std::vector<double> readNumbers(const XmlDocument& doc, const Element& element);  // |x| <= 1e9; +-inf only as a control limit
 double readDouble(const XmlDocument& doc, const Element& owner, const char* property, double fallback);
 double readRequiredDouble(const XmlDocument& doc, const Element& owner, const char* property);
 Eigen::Vector3d readVector3(const XmlDocument& doc, const Element& owner, const char* property,

@@ -135,6 +135,8 @@ private:
             if (!nextLine(line)) fail(lineNumber_ + 1, "missing column labels after 'endheader'");
         } while (trim(line).empty());
         std::vector<std::string> labels = splitCells(line);
+        // A line of other white space (a form feed, a vertical tab) is not blank to trim() but has no cells.
+        if (labels.empty()) fail(lineNumber_, "missing column labels after 'endheader' (a line of white space only)");
         if (labels.front() != "time") fail(lineNumber_, "first column must be 'time', got '" + labels.front() + "'");
         for (std::size_t i = 1; i < labels.size(); ++i)
             if (labels[i].empty()) fail(lineNumber_, "column " + std::to_string(i + 1) + " has an empty label");
@@ -185,6 +187,7 @@ private:
             if (!table_.times.empty() && !(values.front() > table_.times.back()))
                 fail(lineNumber_, "time " + cells.front() + " does not increase (the row before is at " +
                                       std::to_string(table_.times.back()) + ")");
+            table_.rowLines.push_back(lineNumber_);
             table_.times.push_back(values.front());
             table_.rows.emplace_back(values.begin() + 1, values.end());
         }
@@ -201,7 +204,13 @@ void checkHeaderText(const std::string& text, const std::string& what, const std
 }  // namespace
 
 void writeStorageFile(const StorageTable& table, const std::string& path) {
-    // Everything is checked before the file is opened, so a refused table leaves no half-written file.
+    OutputFileSet set;
+    writeStorageFile(table, set, path);
+    set.commit();
+}
+
+void writeStorageFile(const StorageTable& table, OutputFileSet& set, const std::string& path) {
+    // Everything is checked before the file is opened, so a refused table starts no file.
     checkHeaderText(table.name, "name", path);
     if (table.name.find('=') != std::string::npos)
         throw Error(path + ": the name '" + table.name + "' cannot be written: a first line with '=' reads as metadata");
@@ -223,8 +232,7 @@ void writeStorageFile(const StorageTable& table, const std::string& path) {
                             "' is not finite");
     }
 
-    std::ofstream out(path);
-    if (!out) throw Error(path + ": cannot open for writing");
+    std::ostream& out = set.open(path);
     out << table.name << "\nversion=1\nnRows=" << table.rows.size() << "\nnColumns=" << table.columns.size() + 1
         << "\ninDegrees=" << (table.inDegrees ? "yes" : "no") << '\n';
     for (const std::string& line : table.header) out << line << '\n';
@@ -236,11 +244,27 @@ void writeStorageFile(const StorageTable& table, const std::string& path) {
         for (double value : table.rows[i]) out << '\t' << value;
         out << '\n';
     }
-    if (!out) throw Error(path + ": write failed");
 }
 
 StorageTable readStorageFile(const std::string& path, NonFinite nonFinite) {
     return StorageReader(path, nonFinite).read();
+}
+
+void checkStorageMagnitudes(const StorageTable& table, const std::vector<int>& columns, double bound,
+                            const std::string& what) {
+    for (std::size_t r = 0; r < table.rows.size(); ++r)
+        for (int c : columns) {
+            const double value = table.rows[r][static_cast<std::size_t>(c)];
+            if (!(std::abs(value) > bound) || std::isnan(value)) continue;
+            const std::string at = table.where.empty() || r >= table.rowLines.size()
+                                       ? "storage table '" + table.name + "' row " + std::to_string(r)
+                                       : table.where.substr(0, table.where.rfind(':')) + ":" +
+                                             std::to_string(table.rowLines[r]);
+            std::ostringstream text;
+            text << at << ": column '" << table.columns[static_cast<std::size_t>(c)] << "' = " << value
+                 << " (t = " << table.times[r] << " s) is beyond +-" << bound << " for " << what;
+            throw Error(text.str());
+        }
 }
 
 std::vector<int> matchStorageColumns(const StorageTable& table, const std::vector<std::string>& expected,

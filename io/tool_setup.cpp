@@ -112,7 +112,60 @@ AnalyzeSetup readAnalyzeTool(const XmlDocument& doc, const Element& tool) {
     return setup;
 }
 
+InverseKinematicsTaskSetup readInverseKinematicsTask(const XmlDocument& doc, const Element& element) {
+    InverseKinematicsTaskSetup task;
+    task.name = osim::getName(element);
+    task.where = doc.where(element);
+    if (task.name.empty()) doc.fail(element, "a task needs the name of its marker or coordinate");
+    task.apply = osim::readBool(doc, element, "apply", task.apply);
+    task.weight = osim::readDouble(doc, element, "weight", task.weight);
+    if (task.weight < 0) doc.fail(element, "weight must be >= 0");
+    task.valueType = osim::readText(doc, element, "value_type", task.valueType);
+    if (task.valueType != "default_value" && task.valueType != "manual_value" && task.valueType != "from_file")
+        doc.fail(element, "value_type '" + task.valueType + "' is not default_value, manual_value or from_file");
+    task.value = osim::readDouble(doc, element, "value", task.value);
+    return task;
+}
+
+InverseKinematicsSetup readInverseKinematicsTool(const XmlDocument& doc, const Element& tool) {
+    InverseKinematicsSetup setup;
+    setup.name = osim::getName(tool);
+    setup.file = doc.getPath();
+    setup.modelFile = readFile(doc, tool, "model_file", true);
+    setup.markerFile = readFile(doc, tool, "marker_file", true);
+    if (osim::readText(doc, tool, "coordinate_file") != "Unassigned")  // OpenSim's word for none
+        setup.coordinateFile = readFile(doc, tool, "coordinate_file", false);
+    const std::vector<double> range = osim::readFixedNumbers(doc, tool, "time_range", 2, {setup.startTime, setup.endTime});
+    setup.startTime = range[0];
+    setup.endTime = range[1];
+    checkTimeOrder(doc, tool, setup.startTime, setup.endTime);
+    setup.accuracy = osim::readDouble(doc, tool, "accuracy", setup.accuracy);
+    if (!(setup.accuracy > 0)) doc.fail(*osim::findChild(tool, "accuracy"), "accuracy must be > 0");
+    const std::string weight = osim::readText(doc, tool, "constraint_weight", "Inf");
+    if (weight != "Inf" && weight != "inf" && weight != "Infinity")
+        setup.constraintWeight = osim::readDouble(doc, tool, "constraint_weight", setup.constraintWeight);
+    if (const Element* tasks = osim::findChild(tool, "IKTaskSet"))
+        for (const Element* task : osim::getSetObjects(*tasks)) {
+            const std::string type = task->Name();
+            if (type == "IKMarkerTask")
+                setup.markerTasks.push_back(readInverseKinematicsTask(doc, *task));
+            else if (type == "IKCoordinateTask")
+                setup.coordinateTasks.push_back(readInverseKinematicsTask(doc, *task));
+            else
+                doc.fail(*task, "expected an IKMarkerTask or IKCoordinateTask");
+        }
+    setup.resultsDirectory = doc.resolveFile(osim::readText(doc, tool, "results_directory", "."));
+    setup.outputMotionFile = osim::readText(doc, tool, "output_motion_file", setup.name + "_ik.mot");
+    setup.reportErrors = osim::readBool(doc, tool, "report_errors", setup.reportErrors);
+    return setup;
+}
+
 }  // namespace
+
+InverseKinematicsSetup readInverseKinematicsSetup(const std::string& path) {
+    const XmlDocument doc(path);
+    return readInverseKinematicsTool(doc, doc.getObject("InverseKinematicsTool"));
+}
 
 InverseDynamicsSetup readInverseDynamicsSetup(const std::string& path) {
     const XmlDocument doc(path);
@@ -130,7 +183,8 @@ ToolSetup readToolSetup(const std::string& path) {
     const std::string type = tool.Name();
     if (type == "InverseDynamicsTool") return readInverseDynamicsTool(doc, tool);
     if (type == "AnalyzeTool") return readAnalyzeTool(doc, tool);
-    doc.fail(tool, "not a tool sinew runs (expected an InverseDynamicsTool or AnalyzeTool setup)");
+    if (type == "InverseKinematicsTool") return readInverseKinematicsTool(doc, tool);
+    doc.fail(tool, "not a tool sinew runs (expected an InverseDynamicsTool, InverseKinematicsTool or AnalyzeTool setup)");
 }
 
 OsimForceSet readForceSetFile(const std::string& path) {

@@ -59,6 +59,9 @@ double YamlFields::readNumber(const YAML::Node& node, const std::string& key) co
         fail(node, "field '" + key + "' must be a number, got '" + node.Scalar() + "'");
     }
     if (!std::isfinite(value)) fail(node, "field '" + key + "' must be finite, got '" + node.Scalar() + "'");
+    if (std::abs(value) > kMaxFieldMagnitude)
+        fail(node, "field '" + key + "' = " + node.Scalar() + " is beyond the magnitude 1e9 a model file's numbers "
+                   "are bounded to (docs/model-format.md, \"Bounds\")");
     return value;
 }
 

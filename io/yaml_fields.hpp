@@ -10,6 +10,11 @@
 
 namespace sinew {
 
+// Every number read is bounded in magnitude: SI quantities of a body (masses, lengths, stiffnesses, forces,
+// times) stay far below it, and beyond it squared terms and step sizes leave what a double carries through
+// the dynamics (a stiffness of 1e308 overflows the first force; a point 1e20 m away collapses every step).
+constexpr double kMaxFieldMagnitude = 1e9;
+
 class YamlFields {
 public:
     explicit YamlFields(std::string source) : source_(std::move(source)) {}

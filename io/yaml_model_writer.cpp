@@ -1,10 +1,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/Geometry>
-#include <fstream>
 #include <limits>
 
 #include "sinew/core/error.hpp"
+#include "sinew/io/atomic_file.hpp"
 #include "sinew/io/model_file.hpp"
 
 namespace sinew {
@@ -275,11 +275,6 @@ std::string writeModelText(const Model& model) {
     return std::string(out.c_str()) + "\n";
 }
 
-void writeModelFile(const Model& model, const std::string& path) {
-    std::ofstream file(path);
-    if (!file) throw Error(path + ": cannot open for writing");
-    file << writeModelText(model);
-    if (!file) throw Error(path + ": write failed");
-}
+void writeModelFile(const Model& model, const std::string& path) { writeFileAtomically(path, writeModelText(model)); }
 
 }  // namespace sinew

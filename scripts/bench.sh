@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds sinew (scripts/setup.sh), runs the benchmarks into build/benchmarks.json and the tension ones into
-# build/tension_benchmarks.json, then pairs sinew with Simbody per model, fits the scaling slopes and plots
-# them (scripts/plot_scaling.py -> build/forward_dynamics_scaling.png). docs/performance.md has the numbers
-# of the last full run.
+# build/tension_benchmarks.json, then pairs sinew with Simbody per model and fits the scaling slopes
+# (scripts/plot_scaling.py), and plots them (sinew plot -> build/forward_dynamics_scaling_<variant>.png).
+# docs/performance.md has the numbers of the last full run.
 # usage: scripts/bench.sh [google-benchmark args...]   e.g. --benchmark_filter=wholebody
 # Arguments come after the defaults below and override them. A full run takes about 3 minutes on 2 cores.
 set -euo pipefail
@@ -21,5 +21,9 @@ build/bin/tension_benchmarks --benchmark_out=build/tension_benchmarks.json --ben
   --benchmark_context="cpu_model=${cpu_model:-unknown}" \
   --benchmark_min_time=0.2 --benchmark_repetitions=3 --benchmark_display_aggregates_only=true "$@"
 
-# Debian's Python, which has python3-matplotlib (scripts/setup.sh installs it).
-/usr/bin/python3 scripts/plot_scaling.py build/benchmarks.json --png build/forward_dynamics_scaling.png
+# The tables, slopes and targets (Debian's Python); the scaling curves, one plot per variant, by sinew plot.
+/usr/bin/python3 scripts/plot_scaling.py build/benchmarks.json --png ''
+for variant in 'bare:[0-9]$' 'loops:[0-9]_loops$' 'wires:[0-9]_wires$' 'loops_wires:_loops_wires$'; do
+  build/bin/sinew plot --benchmark build/benchmarks.json --filter "^ForwardDynamics/.*${variant#*:}" \
+    --title "one forward-dynamics evaluation, ${variant%%:*}" -o "build/forward_dynamics_scaling_${variant%%:*}.png"
+done

@@ -9,6 +9,10 @@ out=build/demo
 build/bin/sinew info models/whole_body/whole_body.yaml
 build/bin/sinew simulate models/whole_body/whole_body.yaml --engine sinew --integrator rk4 --step 1e-4 \
   --hang-by head_neck --duration 1 --interval 0.01 -o "$out"
-/usr/bin/python3 scripts/plot_storage.py "$out/whole_body_energy.png" "$out/whole_body_energy.sto"
+build/bin/sinew plot "$out/whole_body_energy.sto" --ylabel "energy (J)" -o "$out/whole_body_energy.png"
 echo "demo: results (.sto tables of coordinates, speeds, 990 wire tensions and energy; the picture"
 echo "      whole_body_energy.png) in $(pwd)/$out"
+# The paper's Fig. 9 analogue: six frames of the hang, the wires coloured by the tensions the run wrote.
+build/bin/sinew render models/whole_body/whole_body.yaml --motion "$out/whole_body_coordinates.sto" \
+  --tensions "$out/whole_body_tensions.sto" --strip 6 --view front -o "$out/whole_body_hang_strip.png"
+echo "demo: the hang strip (paper's Fig. 9) in $(pwd)/$out/whole_body_hang_strip.png"

@@ -5,7 +5,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libsimbody-dev libeigen3-dev libyaml-cpp-dev libgtest-dev libbenchmark-dev
-          libtinyxml2-dev coinor-libclp-dev coinor-libipopt-dev libmujoco-dev python3 python3-matplotlib)
+          libtinyxml2-dev coinor-libclp-dev coinor-libipopt-dev libmujoco-dev python3 python3-matplotlib
+          libcairo2-dev nlohmann-json3-dev libjs-three chromium chromium-driver
+          clang libclang-rt-dev libomp-dev)  # clang, its runtimes and OpenMP for the fuzzers (fuzz/run.sh)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

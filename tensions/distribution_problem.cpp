@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "sinew/core/error.hpp"
@@ -15,11 +16,23 @@ void checkSize(const char* field, Eigen::Index size, Eigen::Index expected, cons
                     " entries, expected " + std::to_string(expected) + " (" + what + ")");
 }
 
+// Clp takes magnitudes of 1e30 and more as infinite and its tolerances break down well before (an
+// assertion in ClpNonLinearCost, not an error status), so every number of a problem stays below this.
+constexpr double kMaxMagnitude = 1e20;
+
+bool isBounded(double v) { return std::abs(v) <= kMaxMagnitude; }
+
+std::string describe(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
 void checkFinite(const char* field, const Eigen::VectorXd& v) {
     for (Eigen::Index i = 0; i < v.size(); ++i)
-        if (!std::isfinite(v[i]))
+        if (!isBounded(v[i]))
             throw Error("distribution problem: " + std::string(field) + "[" + std::to_string(i) + "] is " +
-                        std::to_string(v[i]) + ", expected a finite number");
+                        describe(v[i]) + ", expected a finite number within +-1e20");
 }
 
 // max(1, |tau|, max_i sum_j |A_ij x_j|): the size of the generalized forces in play.
@@ -82,18 +95,20 @@ void validateDistributionProblem(const DistributionProblem& problem) {
     checkSize("isEquality", static_cast<Eigen::Index>(problem.isEquality.size()), rows, "one per row of A");
     for (int j = 0; j < problem.A.outerSize(); ++j)
         for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, j); it; ++it)
-            if (!std::isfinite(it.value()))
+            if (!isBounded(it.value()))
                 throw Error("distribution problem: A(" + std::to_string(it.row()) + ", " + std::to_string(j) +
-                            ") is " + std::to_string(it.value()) + ", expected a finite number");
+                            ") is " + describe(it.value()) + ", expected a finite number within +-1e20");
     checkFinite("cost", problem.cost);
     checkFinite("weight", problem.weight);
     checkFinite("target", problem.target);
     checkFinite("tolerance", problem.tolerance);
     for (Eigen::Index j = 0; j < numBounded; ++j) {
         const std::string at = "[" + std::to_string(j) + "]";
-        if (std::isnan(problem.lower[j]) || std::isnan(problem.upper[j]) || problem.lower[j] > problem.upper[j])
+        const double lower = problem.lower[j], upper = problem.upper[j];
+        if (std::isnan(lower) || std::isnan(upper) || lower > upper || (std::isfinite(lower) && !isBounded(lower)) ||
+            (std::isfinite(upper) && !isBounded(upper)))
             throw Error("distribution problem: bounds" + at + " are [" + std::to_string(problem.lower[j]) + ", " +
-                        std::to_string(problem.upper[j]) + "], expected lower <= upper");
+                        std::to_string(problem.upper[j]) + "], expected lower <= upper, each infinite or within +-1e20");
         if (!(problem.weight[j] > 0))
             throw Error("distribution problem: weight" + at + " is " + std::to_string(problem.weight[j]) +
                         ", expected > 0");

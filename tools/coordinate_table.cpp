@@ -1,10 +1,16 @@
 #include "sinew/tools/coordinate_table.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "sinew/core/error.hpp"
 
 namespace sinew {
+namespace {
+
+constexpr double kMaxCoordinateMagnitude = 1e6;
+
+}  // namespace
 
 CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& table) {
     for (const Joint& joint : model.getJoints())
@@ -17,10 +23,13 @@ CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& 
     for (const Coordinate& c : coordinates) names.push_back(c.name);
     const std::vector<int> columnOf = matchStorageColumns(table, names, ExtraColumns::Refuse);
 
+    // Coordinates in rad, degrees or m: no body's comes near; the splines' derivatives of larger ones overflow.
+    checkStorageMagnitudes(table, columnOf, kMaxCoordinateMagnitude, "a coordinate (rad, degrees or m)");
     CoordinateSamples samples;
     const Eigen::Index rows = static_cast<Eigen::Index>(table.times.size()), n = static_cast<Eigen::Index>(names.size());
     samples.times = Eigen::Map<const Eigen::VectorXd>(table.times.data(), rows);
     samples.q.resize(rows, n);
+    samples.where = table.where;
     for (Eigen::Index c = 0; c < n; ++c) {
         const std::size_t column = static_cast<std::size_t>(columnOf[static_cast<std::size_t>(c)]);
         // OpenSim converts only rotational coordinates (Storage conversion by Coordinate::getMotionType).
@@ -35,10 +44,20 @@ CoordinateTrajectory preprocessCoordinateSamples(const Model& model, const Coord
                                                  double lowpassCutoffHz, double startTime, double finalTime) {
     CoordinatePreprocessingOptions options;
     options.lowpassCutoffHz = lowpassCutoffHz;
-    options.startTime = startTime;
-    options.finalTime = finalTime;
+    const Eigen::Index rows = samples.times.size();
+    options.startTime = rows ? std::max(startTime, samples.times[0]) : startTime;
+    options.finalTime = rows ? std::min(finalTime, samples.times[rows - 1]) : finalTime;
+    if (rows && options.startTime > options.finalTime)
+        throw Error((samples.where.empty() ? "" : samples.where + ": ") + "the time range [" +
+                    std::to_string(startTime) + ", " + std::to_string(finalTime) + "] s lies outside the motion's [" +
+                    std::to_string(samples.times[0]) + ", " + std::to_string(samples.times[rows - 1]) + "] s");
     for (const Coordinate& c : model.getCoordinates()) options.columnNames.push_back(c.name);
-    return preprocessCoordinates(samples.times, samples.q, options);
+    try {
+        return preprocessCoordinates(samples.times, samples.q, options);
+    } catch (const Error& e) {
+        if (samples.where.empty()) throw;
+        throw Error(samples.where + " (the labels; rows counted from 0 below them): " + e.what());
+    }
 }
 
 }  // namespace sinew

@@ -45,9 +45,14 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
         udot = trajectory.qddot.row(i).transpose();
         calcAppliedLinkForces(model, measured ? &*measured : nullptr, data, t, q, linkForces);
         calcInverseDynamics(model, data, q, u, udot, linkForces, tau);
-        if (!tau.allFinite())
+        if (!tau.allFinite()) {
+            Eigen::Index k = 0;
+            while (std::isfinite(tau[k])) ++k;
             throw Error("inverse dynamics at t = " + std::to_string(t) + " s (frame " + std::to_string(i + 1) +
-                        "): a generalized force is not finite");
+                        "): the generalized force of coordinate '" + modelCoordinates[static_cast<std::size_t>(k)].name +
+                        "' is not finite (q " + std::to_string(q[k]) + ", speed " + std::to_string(u[k]) +
+                        ", acceleration " + std::to_string(udot[k]) + "; check the motion and external loads there)");
+        }
         result.times.push_back(t);
         result.rows.emplace_back(tau.data(), tau.data() + tau.size());
         if (options.onFrame) options.onFrame(i + 1, frames);

@@ -34,6 +34,9 @@ MeasuredLoads::MeasuredLoads(const Model& model, const ExternalLoads& loads) {
     auto makeChannel = [&](const std::array<int, 3>& columns) {
         Channel channel;
         if (columns[0] < 0) return channel;
+        // Forces (N), torques (N m) and points (m) of a measured load stay far below this; beyond it the
+        // generalized forces overflow or drown every other load.
+        checkStorageMagnitudes(table, {columns.begin(), columns.end()}, 1e7, "an external load (N, N m or m)");
         Eigen::VectorXd values(times.size());
         for (int axis = 0; axis < 3; ++axis) {
             for (Eigen::Index r = 0; r < times.size(); ++r)

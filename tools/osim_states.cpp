@@ -48,6 +48,8 @@ CoordinateTrajectory readOsimStates(const Model& model, const StorageTable& stat
                                         coordinate.name + "' (expected /jointset/" + joint + "/" + coordinate.name +
                                         (valueColumn < 0 ? "/value or " + coordinate.name
                                                          : "/speed or " + coordinate.name + "_u") + ")");
+        checkStorageMagnitudes(states, {valueColumn}, 1e6, "a coordinate value (rad or m)");
+        checkStorageMagnitudes(states, {speedColumn}, 1e6, "a coordinate speed (rad/s or m/s)");
         for (Eigen::Index r = 0; r < rows; ++r) {
             q(r, c) = states.rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(valueColumn)];
             u(r, c) = states.rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(speedColumn)];

@@ -116,9 +116,11 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
     std::filesystem::create_directories(directory);
     const std::string prefix = (directory / (setup.name + "_" + analysis.name + "_")).string();
     std::vector<std::string> written = {prefix + "force.sto", prefix + "activation.sto", prefix + "report.sto"};
-    writeStorageFile(result.force, written[0]);
-    writeStorageFile(result.activation, written[1]);
-    writeStorageFile(result.report, written[2]);
+    OutputFileSet outputs;
+    writeStorageFile(result.force, outputs, written[0]);
+    writeStorageFile(result.activation, outputs, written[1]);
+    writeStorageFile(result.report, outputs, written[2]);
+    outputs.commit();
     return written;
 }
 

@@ -1,6 +1,8 @@
 #include "sinew/tools/tension_motion.hpp"
 
+#include <cmath>
 #include <optional>
+#include <string>
 
 #include "sinew/core/coordinate_preprocessing.hpp"
 #include "sinew/core/error.hpp"
@@ -40,6 +42,7 @@ CoordinateSamples keepFiniteRows(const CoordinateSamples& samples, const Tension
     CoordinateSamples finite;
     finite.times = samples.times(kept);
     finite.q = samples.q(kept, Eigen::all);
+    finite.where = samples.where;
     return finite;
 }
 
@@ -110,10 +113,20 @@ TensionMotionResult analyseTrajectory(const Model& model, const CoordinateTrajec
         u = trajectory.qdot.row(i).transpose();
         udot = trajectory.qddot.row(i).transpose();
         calcAppliedLinkForces(model, measured ? &*measured : nullptr, data, t, q, linkForces);
-        const TensionFrame& frame = analysis.calcFrame(q, u, udot, linkForces);
-        if (!frame.tau.allFinite())
-            throw Error("tensions at t = " + std::to_string(t) + " s (frame " + std::to_string(i + 1) +
-                        "): a generalized force from inverse dynamics is not finite");
+        const std::string at = "tensions at t = " + std::to_string(t) + " s (frame " + std::to_string(i + 1) + ")";
+        const TensionFrame* solved = nullptr;
+        try {
+            solved = &analysis.calcFrame(q, u, udot, linkForces);
+        } catch (const Error& e) {
+            throw Error(at + ": " + e.what());
+        }
+        const TensionFrame& frame = *solved;
+        if (!frame.tau.allFinite()) {
+            Eigen::Index k = 0;
+            while (std::isfinite(frame.tau[k])) ++k;
+            throw Error(at + ": the generalized force of '" + getSpeedNames(model)[static_cast<std::size_t>(k)] +
+                        "' from inverse dynamics is not finite (check the motion and external loads there)");
+        }
         result.infeasibleFrames += frame.status == DistributionStatus::Infeasible;
         result.ipoptFrames += frame.usedIpopt;
         result.failedFrames += frame.status == DistributionStatus::Failed;

@@ -3,6 +3,8 @@
 // their line.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -144,7 +146,56 @@ TEST(ToolSetup, ToolTypeIsTheDocumentsObject) {
 <ScaleTool name="subject"/></OpenSimDocument>
 )");
     EXPECT_TRUE(test::throwsErrorAt([&] { readToolSetup(scale); }, scale + ":3: ",
-                                    {"ScaleTool", "InverseDynamicsTool or AnalyzeTool"}, "a ScaleTool setup"));
+                                    {"ScaleTool", "InverseDynamicsTool, InverseKinematicsTool or AnalyzeTool"}, "a ScaleTool setup"));
+}
+
+// OpenSim 3's IK setup layout (Gait10dof18musc's): tasks with apply and weight, an Unassigned coordinate file.
+TEST(ToolSetup, InverseKinematicsTool) {
+    const std::string path = writeSetup("ik.xml", R"(<OpenSimDocument Version="30000">
+<InverseKinematicsTool name="walk">
+<model_file> ../subject01.osim </model_file>
+<constraint_weight>Inf</constraint_weight>
+<accuracy>1e-005</accuracy>
+<IKTaskSet><objects>
+<IKMarkerTask name="Sternum"><apply>true</apply><weight>1</weight></IKMarkerTask>
+<IKMarkerTask name="R.Knee.Lat"><apply>false</apply><weight>1</weight></IKMarkerTask>
+<IKCoordinateTask name="knee_angle_r"><apply>true</apply><weight>5</weight><value_type>manual_value</value_type><value>0.2</value></IKCoordinateTask>
+</objects><groups /></IKTaskSet>
+<marker_file>walk.trc</marker_file>
+<coordinate_file>Unassigned</coordinate_file>
+<time_range> 0 2.5</time_range>
+<output_motion_file>walk_IK.mot</output_motion_file>
+</InverseKinematicsTool></OpenSimDocument>
+)");
+    const ToolSetup tool = readToolSetup(path);
+    ASSERT_TRUE(std::holds_alternative<InverseKinematicsSetup>(tool));
+    const InverseKinematicsSetup& setup = std::get<InverseKinematicsSetup>(tool);
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    EXPECT_EQ(setup.modelFile, (folder / "../subject01.osim").lexically_normal().string());
+    EXPECT_EQ(setup.markerFile, (folder / "walk.trc").string());
+    EXPECT_TRUE(setup.coordinateFile.empty());
+    EXPECT_EQ(setup.accuracy, 1e-5);
+    EXPECT_TRUE(std::isinf(setup.constraintWeight));
+    EXPECT_EQ(setup.startTime, 0);
+    EXPECT_EQ(setup.endTime, 2.5);
+    ASSERT_EQ(setup.markerTasks.size(), 2u);
+    EXPECT_FALSE(setup.markerTasks[1].apply);
+    ASSERT_EQ(setup.coordinateTasks.size(), 1u);
+    EXPECT_EQ(setup.coordinateTasks[0].valueType, "manual_value");
+    EXPECT_EQ(setup.coordinateTasks[0].value, 0.2);
+    EXPECT_EQ(setup.coordinateTasks[0].weight, 5);
+    EXPECT_EQ(setup.outputMotionFile, "walk_IK.mot");
+    const std::string bad = writeSetup("ik_bad.xml", R"(<OpenSimDocument Version="40000">
+<InverseKinematicsTool name="walk"><model_file>m.osim</model_file><marker_file>w.trc</marker_file>
+<IKTaskSet><objects>
+<IKCoordinateTask name="knee"><value_type>guess</value_type></IKCoordinateTask>
+</objects></IKTaskSet></InverseKinematicsTool></OpenSimDocument>
+)");
+    EXPECT_TRUE(test::throwsErrorAt([&] { readToolSetup(bad); }, bad + ":4: ", {"value_type 'guess'"}, "a bad value_type"));
+    const std::string noMarkers = writeSetup("ik_no_markers.xml", R"(<OpenSimDocument Version="40000">
+<InverseKinematicsTool name="walk"><model_file>m.osim</model_file></InverseKinematicsTool></OpenSimDocument>
+)");
+    EXPECT_TRUE(test::throwsErrorAt([&] { readToolSetup(noMarkers); }, noMarkers + ":2: ", {"marker_file"}, "no marker file"));
 }
 
 TEST(ToolSetup, BadSetups) {

@@ -39,6 +39,13 @@ namespace sinew {
 SimulationSummary simulateForwardSinew(const Model& model, const ForwardSimulationOptions& options,
                                        const std::function<void(const SimulationFrame&)>& onFrame);
 
+// The report times of a run are t_i = min(i * reportInterval, duration), i = 0..n, the last exactly at
+// `duration` (0.015 s at an interval of 0.01 s reports 0, 0.01, 0.015). Returns n, after checking the
+// options both engines share: duration, interval, accuracy, step and budgets finite and > 0, at most
+// kMaxSimulationFrames frames, an interval the times can resolve. Throws sinew::Error naming the option.
+long checkSimulationOptions(const ForwardSimulationOptions& options);
+double getReportTime(const ForwardSimulationOptions& options, long i);
+
 // Largest position-constraint violation at q, m: over the loops the gap |p_A - p_B| between the two loop
 // points, and for hangLink >= 0 the distance of that link's origin from p_GH, where it was hung. Runs
 // calcPositionKinematics into `data`.

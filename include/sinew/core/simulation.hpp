@@ -23,7 +23,14 @@ struct ForwardSimulationOptions {
     double accuracy = 1e-6;    // relative accuracy of the adaptive integrator; also the constraint tolerance
     double fixedStep = 1e-3;   // s, the step of RungeKutta4Fixed
     Eigen::VectorXd initialSpeeds;  // u at t = 0 (nu), projected onto the loop constraints; empty: at rest
+    // Budgets, so that a stiff or diverging model stops with a message naming the time instead of running
+    // for hours: integrator steps attempted in all (rejected ones included), and the shortest adaptive step.
+    long maxSteps = 1000000;
+    double minStep = 1e-12;  // s
 };
+
+// At most this many output frames (each holds q, u and every wire's tension).
+constexpr long kMaxSimulationFrames = 1000000;
 
 const char* toString(ForwardSimulationOptions::Integrator integrator);
 

@@ -5,6 +5,9 @@
 #include <functional>
 #include <string>
 
+#include <vector>
+
+#include "sinew/core/marker.hpp"
 #include "sinew/core/model.hpp"
 
 namespace sinew {
@@ -19,5 +22,9 @@ ModelFormat detectModelFormat(const std::string& path);
 // Reads the model; `notes` (may be empty) receives one "not imported: ..." line per element a converter
 // left out.
 Model loadModel(const std::string& path, const std::function<void(const std::string&)>& notes);
+
+// The motion-capture markers the model file defines, on the links of `model` (loaded from the same file):
+// an OpenSim model's MarkerSet; none for the other formats.
+std::vector<Marker> loadMarkers(const std::string& path, const Model& model);
 
 }  // namespace sinew

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "sinew/io/atomic_file.hpp"
+
 namespace sinew {
 
 struct StorageTable {
@@ -21,11 +23,16 @@ struct StorageTable {
     std::vector<std::string> header = {};
     // "file:line" of the column labels when the table was read from a file, for messages; empty otherwise.
     std::string where = {};
+    // The file line of each row when read from a file (rows[i] sits on line rowLines[i]); empty otherwise.
+    std::vector<int> rowLines = {};
 };
 
 // Throws sinew::Error for a table that could not be read back: rows of the wrong length, a non-finite
-// value, a label or header line that would break the layout.
+// value, a label or header line that would break the layout; and for a failed write (a full disk), after
+// which no file is left at `path` that was not there before (io/atomic_file.hpp).
 void writeStorageFile(const StorageTable& table, const std::string& path);
+// The same as one file of a command's output set, renamed into place with the others on set.commit().
+void writeStorageFile(const StorageTable& table, OutputFileSet& set, const std::string& path);
 enum class NonFinite { Refuse, Allow };
 
 // Throws sinew::Error naming the file, line (and column, for a cell) of a malformed header or row;
@@ -33,6 +40,12 @@ enum class NonFinite { Refuse, Allow };
 // (for motions with gaps, which the caller then skips) they are read as they are, and in a tab-separated
 // row an empty cell, or a cell missing at the end of the row, reads as NaN. Times must be finite either way.
 StorageTable readStorageFile(const std::string& path, NonFinite nonFinite = NonFinite::Refuse);
+
+// Refuses a finite cell of the given columns (indices into table.columns) beyond +-bound, naming the file
+// and line (or the table and row), the column and `what` the column holds: a value no body produces, that
+// would overflow the dynamics or the solvers (a ground reaction of 1e308 N, a coordinate of 1e300 degrees).
+void checkStorageMagnitudes(const StorageTable& table, const std::vector<int>& columns, double bound,
+                            const std::string& what);
 
 enum class ExtraColumns { Allow, Refuse };
 

@@ -1,5 +1,6 @@
 #pragma once
-// OpenSim tool setup files: InverseDynamicsTool, AnalyzeTool with a StaticOptimization analysis, and the
+// OpenSim tool setup files: InverseDynamicsTool, InverseKinematicsTool, AnalyzeTool with a StaticOptimization
+// analysis, and the
 // force-set files such a setup adds to the model (reserve and residual actuators). Files they name are made
 // absolute against the setup file's folder, where OpenSim 4 runs its tools from. Values absent from the XML
 // take OpenSim's defaults, written here.
@@ -63,6 +64,34 @@ struct AnalyzeSetup {
     std::vector<OsimUnsupported> unsupported;  // other analyses and controllers
 };
 
+// An InverseKinematicsTool's task: a marker (IKMarkerTask) or a coordinate (IKCoordinateTask) to track.
+struct InverseKinematicsTaskSetup {
+    std::string name;  // the marker's or the coordinate's
+    bool apply = true;
+    double weight = 0;  // OpenSim's default
+    // Coordinate tasks: where the target comes from: "default_value" (the model's), "manual_value"
+    // (`value`) or "from_file" (the setup's coordinate_file).
+    std::string valueType = "default_value";
+    double value = 0;
+    std::string where;
+};
+
+struct InverseKinematicsSetup {
+    std::string name;
+    std::string file;
+    std::string modelFile;       // absolute
+    std::string markerFile;      // absolute (.trc)
+    std::string coordinateFile;  // absolute; empty when Unassigned
+    double startTime = -std::numeric_limits<double>::infinity();  // s, <time_range>
+    double endTime = std::numeric_limits<double>::infinity();
+    double accuracy = 1e-5;
+    double constraintWeight = std::numeric_limits<double>::infinity();  // Inf: loops and couplers held exactly
+    std::vector<InverseKinematicsTaskSetup> markerTasks, coordinateTasks;
+    std::string resultsDirectory;  // absolute
+    std::string outputMotionFile;  // a file name inside resultsDirectory
+    bool reportErrors = true;
+};
+
 // A force-set file (<ForceSet>): the scalar actuators it holds.
 struct OsimForceSet {
     std::string name;
@@ -76,10 +105,11 @@ struct OsimForceSet {
 // Each throws ModelError at "file:line" naming the element and what was expected.
 InverseDynamicsSetup readInverseDynamicsSetup(const std::string& path);
 AnalyzeSetup readAnalyzeSetup(const std::string& path);
+InverseKinematicsSetup readInverseKinematicsSetup(const std::string& path);
 OsimForceSet readForceSetFile(const std::string& path);
 // Whichever tool the file holds, as the type of its <OpenSimDocument>'s object says; any other tool is
 // refused at the object's line.
-using ToolSetup = std::variant<InverseDynamicsSetup, AnalyzeSetup>;
+using ToolSetup = std::variant<InverseDynamicsSetup, AnalyzeSetup, InverseKinematicsSetup>;
 ToolSetup readToolSetup(const std::string& path);
 
 }  // namespace sinew

@@ -1,0 +1,117 @@
+#pragma once
+// Inverse kinematics: the coordinates q that put the model's markers where a motion capture saw them, frame
+// by frame, as OpenSim's InverseKinematicsTool poses the problem (weighted marker and coordinate tasks,
+// loops and couplers strictly kept, clamped coordinates within their ranges). Solved by Levenberg-Marquardt
+// on the configuration manifold (ball and free joints through their quaternions), warm-started from the
+// previous frame, so that coordinates no task observes stay where they were. docs/inverse-kinematics.md.
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sinew/core/data.hpp"
+#include "sinew/core/marker.hpp"
+#include "sinew/core/model.hpp"
+
+namespace sinew {
+
+struct MarkerTask {
+    std::string marker;  // a marker of the solver's marker set
+    double weight = 1;
+};
+
+// A coordinate held near a value (OpenSim's IKCoordinateTask): its target per frame comes with the
+// frame's targets. Only coordinates with qdot = u (pin and custom joints).
+struct CoordinateTask {
+    std::string coordinate;
+    double weight = 1;
+};
+
+struct InverseKinematicsOptions {
+    // Converged when a step moves no task's target by more than this (m; rad for coordinate tasks).
+    double accuracy = 1e-5;
+    int maxIterations = 100;
+    double constraintTolerance = 1e-8;  // m, loop gaps allowed at convergence
+};
+
+// One frame's targets, in task order.
+struct InverseKinematicsTargets {
+    Eigen::Matrix3Xd markers;     // m, ground axes; a column with a NaN is a marker not seen this frame
+    Eigen::VectorXd coordinates;  // rad or m
+};
+
+struct InverseKinematicsReport {
+    bool converged = false;
+    int iterations = 0;
+    int markersSeen = 0;
+    double rmsMarkerError = 0;  // m, over the markers seen (unweighted, as OpenSim reports it)
+    double maxMarkerError = 0;  // m
+    int worstMarker = -1;       // task index of the largest error, -1 when no marker was seen
+    double constraintViolation = 0;  // m, largest loop gap
+    Eigen::VectorXd markerErrors;    // m, per marker task; NaN where not seen
+};
+
+class InverseKinematicsSolver {
+public:
+    // Throws sinew::Error naming a task whose marker or coordinate does not exist, a coordinate task on a
+    // quaternion, or a weight that is negative or not finite.
+    InverseKinematicsSolver(const Model& model, std::vector<Marker> markers, std::vector<MarkerTask> markerTasks,
+                            std::vector<CoordinateTask> coordinateTasks, InverseKinematicsOptions options = {});
+
+    // Moves q (nq; in: the warm start, usually the previous frame's solution) to the frame's best fit.
+    // Throws sinew::Error when the targets' sizes do not match the tasks or q is not finite.
+    InverseKinematicsReport solve(const InverseKinematicsTargets& targets, Eigen::VectorXd& q);
+
+    const std::vector<MarkerTask>& getMarkerTasks() const { return markerTasks_; }
+    const std::vector<CoordinateTask>& getCoordinateTasks() const { return coordinateTasks_; }
+
+private:
+    // Fills r_ and c_ (and A_, G_ with the Jacobian) at q; returns the merit: the tasks' cost plus the
+    // loops' gaps, weighted to come first.
+    double evaluate(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q, bool withJacobian);
+    void addPointJacobian(int link, const Eigen::Vector3d& p_G, double scale, Eigen::Ref<Eigen::MatrixXd> rows);
+    void addSpeedColumn(int u, const Eigen::VectorXd& q, const Eigen::Ref<const Eigen::VectorXd>& column,
+                        Eigen::Ref<Eigen::MatrixXd> rows) const;
+    void fillLoopGaps(Eigen::VectorXd& c, Eigen::MatrixXd* G);
+    void calcSecondOrderHessian(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q);
+    bool isSmallStep(const Eigen::VectorXd& du) const;
+    void closeLoops(const InverseKinematicsTargets& targets, Eigen::VectorXd& q);
+    // The damped, constrained Gauss-Newton step in u (nu) from the last evaluation, clamped coordinates kept
+    // within their ranges by an active set.
+    Eigen::VectorXd solveStep(double damping, const Eigen::VectorXd& q);
+
+    const Model& model_;
+    std::vector<Marker> markers_;
+    std::vector<MarkerTask> markerTasks_;
+    std::vector<CoordinateTask> coordinateTasks_;
+    InverseKinematicsOptions options_;
+    Data data_;
+    std::vector<int> taskMarker_;      // per marker task: index into markers_
+    std::vector<int> taskCoordinate_;  // per coordinate task: its index in q
+    std::vector<int> freeColumn_;      // per u: the unknown it moves, or -1 (locked, coupled or a virtual link)
+    std::vector<int> couplerOfU_;      // per u: the coupler whose dependent coordinate it is, or -1
+    std::vector<int> boundedColumns_;  // free unknowns of clamped coordinates with a finite range
+    int numFree_ = 0;
+    // Per evaluation: weighted residual r, its Jacobian A (rows x free unknowns), the loop gaps c and their
+    // Jacobian G.
+    Eigen::VectorXd r_, c_;
+    Eigen::MatrixXd A_, G_;
+    Eigen::VectorXd multipliers_;    // the loops' Lagrange multipliers from the last step
+    bool secondOrder_ = false;        // this solve has left Gauss-Newton for the full Hessian
+    Eigen::MatrixXd hessian_;         // of the Lagrangian at the current pose, when secondOrder_
+    Eigen::VectorXd lastQ_;  // q of the last evaluation, for the couplers' slopes
+    Eigen::VectorXd markerErrors_;
+    int markersSeen_ = 0;
+};
+
+// A whole capture through the solver: every frame of `targets` in order, each warm-started from the last
+// (the first from q0). onFrame reports progress.
+struct InverseKinematicsMotion {
+    std::vector<Eigen::VectorXd> q;
+    std::vector<InverseKinematicsReport> reports;
+};
+InverseKinematicsMotion solveInverseKinematics(InverseKinematicsSolver& solver, const Eigen::VectorXd& q0,
+                                               const std::vector<InverseKinematicsTargets>& targets,
+                                               const std::function<void(int frame, int frames)>& onFrame = {});
+
+}  // namespace sinew

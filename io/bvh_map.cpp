@@ -1,0 +1,50 @@
+#include "sinew/io/bvh_map.hpp"
+
+#include <Eigen/Dense>
+#include <set>
+
+#include "sinew/core/error.hpp"
+#include "yaml_fields.hpp"
+
+namespace sinew {
+
+BvhMap readBvhMap(const std::string& path) {
+    const YAML::Node root = loadYamlFile(path);
+    const YamlFields fields(path);
+    if (!root.IsMap()) throw ModelError(path + ":1", "a BVH map is a mapping with unit, axes and joints");
+    fields.requireKeys(root, "BVH map", {"unit", "axes", "joints"});
+    BvhMap map;
+    map.source = path;
+    if (const YAML::Node unit = root["unit"]; unit && unit.Scalar() != "auto") {
+        map.unit = fields.readNumber(root, "unit");
+        if (!(map.unit > 0)) fields.fail(unit, "unit must be 'auto' or metres per BVH unit (> 0)");
+    }
+    if (const YAML::Node axes = root["axes"]) {
+        if (!axes.IsSequence() || axes.size() != 3) fields.fail(axes, "axes must be three rows of three numbers");
+        for (std::size_t r = 0; r < 3; ++r) {
+            if (!axes[r].IsSequence() || axes[r].size() != 3) fields.fail(axes[r], "an axes row needs three numbers");
+            for (std::size_t c = 0; c < 3; ++c) {
+                try {
+                    map.R_GB(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = axes[r][c].as<double>();
+                } catch (const YAML::Exception&) {
+                    fields.fail(axes[r][c], "expected a number in axes");
+                }
+            }
+        }
+        if (!(map.R_GB * map.R_GB.transpose()).isApprox(Eigen::Matrix3d::Identity(), 1e-9) || map.R_GB.determinant() < 0)
+            fields.fail(axes, "axes must be a rotation (orthonormal rows, determinant +1)");
+    }
+    const YAML::Node joints = fields.field(root, "joints", "BVH map");
+    if (!joints.IsMap() || joints.size() == 0) fields.fail(joints, "joints must map BVH joint names to model links");
+    std::set<std::string> seen;
+    for (const auto& entry : joints) {
+        const std::string bvh = entry.first.Scalar(), link = entry.second.Scalar();
+        if (!seen.insert(bvh).second) fields.fail(entry.first, "BVH joint '" + bvh + "' is mapped twice");
+        if (link.empty()) fields.fail(entry.second, "BVH joint '" + bvh + "' needs a model link");
+        map.joints.emplace_back(bvh, link);
+        map.where.push_back(fields.where(entry.first));
+    }
+    return map;
+}
+
+}  // namespace sinew

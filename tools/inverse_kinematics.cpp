@@ -1,0 +1,376 @@
+#include "sinew/tools/inverse_kinematics.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <limits>
+
+#include "sinew/core/coordinate_coupler.hpp"
+#include "sinew/core/error.hpp"
+#include "sinew/core/kinematics.hpp"
+
+namespace sinew {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Weight of the loops' gap (m) in the merit, against the tasks' cost (weight x m^2), beyond the largest
+// multiplier: an exact penalty, so that a step that opens a loop is never bought by a better fit. Small
+// otherwise, since every trial is closed again to roundoff before it is judged.
+constexpr double kLoopMerit = 1;
+constexpr int kActiveSetPasses = 8;
+constexpr int kLoopClosingIterations = 6;
+constexpr double kClosedGap = 1e-15;  // m: roundoff on a body's size
+
+bool hasScalarSpeed(const Joint& joint) { return joint.nq == joint.nu; }
+
+}  // namespace
+
+InverseKinematicsSolver::InverseKinematicsSolver(const Model& model, std::vector<Marker> markers,
+                                                 std::vector<MarkerTask> markerTasks,
+                                                 std::vector<CoordinateTask> coordinateTasks,
+                                                 InverseKinematicsOptions options)
+    : model_(model),
+      markers_(std::move(markers)),
+      markerTasks_(std::move(markerTasks)),
+      coordinateTasks_(std::move(coordinateTasks)),
+      options_(options),
+      data_(model) {
+    auto checkWeight = [](double weight, const std::string& what) {
+        if (!std::isfinite(weight) || weight < 0)
+            throw Error(what + ": weight must be finite and >= 0, got " + std::to_string(weight));
+    };
+    for (const MarkerTask& task : markerTasks_) {
+        checkWeight(task.weight, "marker task '" + task.marker + "'");
+        int found = -1;
+        for (std::size_t m = 0; m < markers_.size(); ++m)
+            if (markers_[m].name == task.marker) found = static_cast<int>(m);
+        if (found < 0) throw Error("marker task '" + task.marker + "': the model has no such marker");
+        taskMarker_.push_back(found);
+    }
+    for (const CoordinateTask& task : coordinateTasks_) {
+        checkWeight(task.weight, "coordinate task '" + task.coordinate + "'");
+        const int q = model.findCoordinateIndex(task.coordinate);
+        if (q == Model::kNotFound) throw Error("coordinate task '" + task.coordinate + "': the model has no such coordinate");
+        const Joint& joint = model.getJoint(model.getCoordinates()[static_cast<std::size_t>(q)].joint);
+        if (!hasScalarSpeed(joint))
+            throw Error("coordinate task '" + task.coordinate + "' is part of " + toString(joint.type) + " joint '" +
+                        joint.name + "'s quaternion; coordinate tasks take pin and custom coordinates");
+        taskCoordinate_.push_back(q);
+    }
+    const int nu = model.getNumU();
+    freeColumn_.assign(static_cast<std::size_t>(nu), -1);
+    couplerOfU_.assign(static_cast<std::size_t>(nu), -1);
+    for (std::size_t k = 0; k < model.getCouplers().size(); ++k)
+        couplerOfU_[static_cast<std::size_t>(model.getCouplers()[k].dependentU)] = static_cast<int>(k);
+    for (int i = 0; i < model.getNumLinks(); ++i) {
+        if (model.getLink(i).isVirtual) continue;  // massless wire nodes: no marker sees them
+        const Joint& joint = model.getJoint(i);
+        for (int k = 0; k < joint.nu; ++k) {
+            const int u = joint.uStart + k;
+            if (couplerOfU_[static_cast<std::size_t>(u)] >= 0) continue;
+            if (hasScalarSpeed(joint)) {
+                const Coordinate& c = model.getCoordinates()[static_cast<std::size_t>(joint.qStart + k)];
+                if (c.locked) continue;
+                if (c.clamped && (std::isfinite(c.rangeMin) || std::isfinite(c.rangeMax))) boundedColumns_.push_back(numFree_);
+            }
+            freeColumn_[static_cast<std::size_t>(u)] = numFree_++;
+        }
+    }
+    const Eigen::Index rows = 3 * static_cast<Eigen::Index>(markerTasks_.size()) +
+                              static_cast<Eigen::Index>(coordinateTasks_.size());
+    r_.resize(rows);
+    A_.resize(rows, numFree_);
+    c_.resize(3 * static_cast<Eigen::Index>(model.getLoops().size()));
+    G_.resize(c_.size(), numFree_);
+    markerErrors_.resize(static_cast<Eigen::Index>(markerTasks_.size()));
+}
+
+// Adds d(u's effect)/du into `rows` at u's unknown: directly for a free speed, through the coupler's slope
+// for a dependent coordinate (q_dep = s f(q_ind)), nowhere for a locked one.
+void InverseKinematicsSolver::addSpeedColumn(int u, const Eigen::VectorXd& q, const Eigen::Ref<const Eigen::VectorXd>& column,
+                                             Eigen::Ref<Eigen::MatrixXd> rows) const {
+    const int free = freeColumn_[static_cast<std::size_t>(u)];
+    if (free >= 0) {
+        rows.col(free) += column;
+        return;
+    }
+    const int k = couplerOfU_[static_cast<std::size_t>(u)];
+    if (k < 0) return;
+    const CoordinateCoupler& coupler = model_.getCouplers()[static_cast<std::size_t>(k)];
+    const int independent = freeColumn_[static_cast<std::size_t>(coupler.independentU)];
+    if (independent < 0) return;
+    rows.col(independent) += coupler.scaleFactor * coupler.function.calcDerivative(q[coupler.independentQ], 1) * column;
+}
+
+// scale x d(p_G)/du for a point p_G fixed on `link`: each joint from the link to the root moves it.
+void InverseKinematicsSolver::addPointJacobian(int link, const Eigen::Vector3d& p_G, double scale,
+                                               Eigen::Ref<Eigen::MatrixXd> rows) {
+    for (int i = link; i != kGround; i = model_.getJoint(i).parent) {
+        const Joint& joint = model_.getJoint(i);
+        const JointMotion H_G = calcJointMotion_G(joint, data_, i, p_G);
+        for (int k = 0; k < joint.nu; ++k)
+            addSpeedColumn(joint.uStart + k, lastQ_, scale * H_G.col(k).tail<3>(), rows);
+    }
+}
+
+// The loops' gaps (and, given G, their Jacobian) at the pose in data_.
+void InverseKinematicsSolver::fillLoopGaps(Eigen::VectorXd& c, Eigen::MatrixXd* G) {
+    if (G) G->setZero();
+    for (std::size_t l = 0; l < model_.getLoops().size(); ++l) {
+        const Loop& loop = model_.getLoops()[l];
+        const Marker a{"", loop.linkA, loop.p_A, ""}, b{"", loop.linkB, loop.p_B, ""};
+        const Eigen::Vector3d p_A = calcMarkerLocation_G(data_, a), p_B = calcMarkerLocation_G(data_, b);
+        const Eigen::Index row = 3 * static_cast<Eigen::Index>(l);
+        c.segment<3>(row) = p_A - p_B;
+        if (!G) continue;
+        if (loop.linkA != kGround) addPointJacobian(loop.linkA, p_A, 1, G->middleRows<3>(row));
+        if (loop.linkB != kGround) addPointJacobian(loop.linkB, p_B, -1, G->middleRows<3>(row));
+    }
+}
+
+// The Hessian of the Lagrangian 1/2 |r|^2 + lambda^T c by central differences of its gradient A^T r + G^T
+// lambda, over the free unknowns: A^T A plus the residuals' and the loops' curvature, which Gauss-Newton
+// leaves out and without which a fit that cannot reach its markers (or pulls against a loop) converges
+// only linearly. Restores the evaluation at q.
+void InverseKinematicsSolver::calcSecondOrderHessian(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q) {
+    const double h = 1e-6;
+    const Eigen::Index n = numFree_;
+    hessian_.setZero(n, n);
+    // An unknown that moves no marker, target or loop (a finger no marker sees) has no curvature either.
+    const Eigen::MatrixXd A = A_, G = G_;
+    for (int u = 0; u < model_.getNumU(); ++u) {
+        const int col = freeColumn_[static_cast<std::size_t>(u)];
+        if (col < 0 || (A.col(col).isZero(0) && G.col(col).isZero(0))) continue;
+        const Eigen::VectorXd step = Eigen::VectorXd::Unit(model_.getNumU(), u) * h;
+        Eigen::VectorXd plus = integrateCoordinates(model_, q, step, 1.0), minus = integrateCoordinates(model_, q, -step, 1.0);
+        applyCoordinateCouplers(model_, plus);
+        applyCoordinateCouplers(model_, minus);
+        evaluate(targets, plus, true);
+        const Eigen::VectorXd gradientPlus = A_.transpose() * r_ + G_.transpose() * multipliers_;
+        evaluate(targets, minus, true);
+        hessian_.col(col) = (gradientPlus - (A_.transpose() * r_ + G_.transpose() * multipliers_)) / (2 * h);
+    }
+    hessian_ = 0.5 * (hessian_ + hessian_.transpose()).eval();
+    evaluate(targets, q, true);
+}
+
+double InverseKinematicsSolver::evaluate(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q,
+                                         bool withJacobian) {
+    calcPositionKinematics(model_, data_, q);
+    lastQ_ = q;
+    if (withJacobian) {
+        A_.setZero();
+        G_.setZero();
+    }
+    markersSeen_ = 0;
+    for (std::size_t t = 0; t < markerTasks_.size(); ++t) {
+        const Eigen::Index row = 3 * static_cast<Eigen::Index>(t);
+        const Eigen::Vector3d observed = targets.markers.col(static_cast<Eigen::Index>(t));
+        if (!observed.allFinite()) {
+            r_.segment<3>(row).setZero();
+            markerErrors_[static_cast<Eigen::Index>(t)] = kNaN;
+            continue;
+        }
+        const Marker& marker = markers_[static_cast<std::size_t>(taskMarker_[t])];
+        const Eigen::Vector3d p_G = calcMarkerLocation_G(data_, marker);
+        const double w = std::sqrt(markerTasks_[t].weight);
+        r_.segment<3>(row) = w * (p_G - observed);
+        markerErrors_[static_cast<Eigen::Index>(t)] = (p_G - observed).norm();
+        ++markersSeen_;
+        if (withJacobian && marker.link != kGround) addPointJacobian(marker.link, p_G, w, A_.middleRows<3>(row));
+    }
+    const Eigen::Index first = 3 * static_cast<Eigen::Index>(markerTasks_.size());
+    for (std::size_t t = 0; t < coordinateTasks_.size(); ++t) {
+        const Eigen::Index row = first + static_cast<Eigen::Index>(t);
+        const int qi = taskCoordinate_[t];
+        const double w = std::sqrt(coordinateTasks_[t].weight);
+        r_[row] = w * (q[qi] - targets.coordinates[static_cast<Eigen::Index>(t)]);
+        if (!withJacobian) continue;
+        const Coordinate& c = model_.getCoordinates()[static_cast<std::size_t>(qi)];
+        const Joint& joint = model_.getJoint(c.joint);
+        addSpeedColumn(joint.uStart + (qi - joint.qStart), q, Eigen::VectorXd::Constant(1, w), A_.middleRows(row, 1));
+    }
+    fillLoopGaps(c_, withJacobian ? &G_ : nullptr);
+    return 0.5 * r_.squaredNorm() + (kLoopMerit + 2 * multipliers_.lpNorm<Eigen::Infinity>()) * c_.norm();
+}
+
+// The linearised step leaves the loops open by its square; closing them again before the step is judged
+// keeps the merit from refusing good steps for that gap (the Maratos effect) and every accepted pose
+// closed. Minimum-norm Gauss-Newton on the gaps alone.
+void InverseKinematicsSolver::closeLoops(const InverseKinematicsTargets& targets, Eigen::VectorXd& q) {
+    if (c_.size() == 0) return;
+    for (int iteration = 0; iteration < kLoopClosingIterations; ++iteration) {
+        evaluate(targets, q, true);
+        if (c_.lpNorm<Eigen::Infinity>() <= kClosedGap) return;
+        const Eigen::VectorXd delta = G_.completeOrthogonalDecomposition().solve(-c_);
+        Eigen::VectorXd du = Eigen::VectorXd::Zero(model_.getNumU());
+        for (int u = 0; u < model_.getNumU(); ++u) {
+            const int col = freeColumn_[static_cast<std::size_t>(u)];
+            if (col >= 0) du[u] = delta[col];
+        }
+        q = integrateCoordinates(model_, q, du, 1.0);
+        applyCoordinateCouplers(model_, q);
+    }
+}
+
+Eigen::VectorXd InverseKinematicsSolver::solveStep(double damping, const Eigen::VectorXd& q) {
+    const Eigen::Index n = numFree_, m = c_.size();
+    // The bounded unknowns fixed at a bound this pass, and how far that moves them.
+    std::vector<bool> fixed(static_cast<std::size_t>(n), false);
+    Eigen::VectorXd fixedStep = Eigen::VectorXd::Zero(n);
+    std::vector<int> qOfColumn(static_cast<std::size_t>(n), -1);
+    for (int u = 0; u < model_.getNumU(); ++u) {
+        const int col = freeColumn_[static_cast<std::size_t>(u)];
+        if (col < 0) continue;
+        for (int i = 0; i < model_.getNumLinks(); ++i) {
+            const Joint& joint = model_.getJoint(i);
+            if (u >= joint.uStart && u < joint.uStart + joint.nu && hasScalarSpeed(joint))
+                qOfColumn[static_cast<std::size_t>(col)] = joint.qStart + (u - joint.uStart);
+        }
+    }
+    Eigen::VectorXd delta(n);
+    for (int pass = 0; pass < kActiveSetPasses; ++pass) {
+        // min 1/2 |r + A d|^2 + 1/2 damping |d|^2  subject to  c + G d = 0, with the fixed entries of d given.
+        Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + m, n + m);
+        Eigen::VectorXd rhs(n + m);
+        K.topLeftCorner(n, n) = secondOrder_ ? hessian_ : A_.transpose() * A_;
+        K.topLeftCorner(n, n).diagonal().array() += damping;
+        K.topRightCorner(n, m) = G_.transpose();
+        K.bottomLeftCorner(m, n) = G_;
+        rhs.head(n) = -A_.transpose() * r_;
+        rhs.tail(m) = -c_;
+        for (Eigen::Index j = 0; j < n; ++j) {
+            if (!fixed[static_cast<std::size_t>(j)]) continue;
+            rhs -= K.col(j) * fixedStep[j];
+            K.row(j).setZero();
+            K.col(j).setZero();
+            K(j, j) = 1;
+            rhs[j] = fixedStep[j];
+        }
+        // Complete orthogonal decomposition: loops may repeat one another's constraints (rank-deficient G).
+        const Eigen::VectorXd solution = K.completeOrthogonalDecomposition().solve(rhs);
+        delta = solution.head(n);
+        multipliers_ = solution.tail(m);
+        bool changed = false;
+        for (int col : boundedColumns_) {
+            if (fixed[static_cast<std::size_t>(col)]) continue;
+            const Coordinate& c = model_.getCoordinates()[static_cast<std::size_t>(qOfColumn[static_cast<std::size_t>(col)])];
+            const double value = q[qOfColumn[static_cast<std::size_t>(col)]];
+            const double next = value + delta[col];
+            if (next > c.rangeMax || next < c.rangeMin) {
+                fixed[static_cast<std::size_t>(col)] = true;
+                fixedStep[col] = (next > c.rangeMax ? c.rangeMax : c.rangeMin) - value;
+                changed = true;
+            }
+        }
+        if (!changed) break;
+    }
+    Eigen::VectorXd du = Eigen::VectorXd::Zero(model_.getNumU());
+    for (int u = 0; u < model_.getNumU(); ++u) {
+        const int col = freeColumn_[static_cast<std::size_t>(u)];
+        if (col >= 0) du[u] = delta[col];
+    }
+    return du;
+}
+
+bool InverseKinematicsSolver::isSmallStep(const Eigen::VectorXd& du) const {
+    Eigen::VectorXd delta(numFree_);
+    for (int u = 0; u < model_.getNumU(); ++u) {
+        const int col = freeColumn_[static_cast<std::size_t>(u)];
+        if (col >= 0) delta[col] = du[u];
+    }
+    const Eigen::VectorXd moved = A_ * delta;
+    for (std::size_t t = 0; t < markerTasks_.size(); ++t) {
+        const double w = std::sqrt(markerTasks_[t].weight);
+        if (w > 0 && moved.segment<3>(3 * static_cast<Eigen::Index>(t)).norm() > options_.accuracy * w) return false;
+    }
+    const Eigen::Index first = 3 * static_cast<Eigen::Index>(markerTasks_.size());
+    for (std::size_t t = 0; t < coordinateTasks_.size(); ++t) {
+        const double w = std::sqrt(coordinateTasks_[t].weight);
+        if (w > 0 && std::abs(moved[first + static_cast<Eigen::Index>(t)]) > options_.accuracy * w) return false;
+    }
+    return true;
+}
+
+InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTargets& targets, Eigen::VectorXd& q) {
+    if (targets.markers.cols() != static_cast<Eigen::Index>(markerTasks_.size()) ||
+        targets.coordinates.size() != static_cast<Eigen::Index>(coordinateTasks_.size()))
+        throw Error("inverse kinematics: the frame has " + std::to_string(targets.markers.cols()) + " markers and " +
+                    std::to_string(targets.coordinates.size()) + " coordinate targets; the solver's tasks are " +
+                    std::to_string(markerTasks_.size()) + " and " + std::to_string(coordinateTasks_.size()));
+    if (q.size() != model_.getNumQ() || !q.allFinite())
+        throw Error("inverse kinematics: the starting coordinates must be " + std::to_string(model_.getNumQ()) +
+                    " finite values");
+    if (!targets.coordinates.allFinite()) throw Error("inverse kinematics: a coordinate task's target is not finite");
+    InverseKinematicsReport report;
+    applyCoordinateCouplers(model_, q);
+    multipliers_.setZero(c_.size());
+    secondOrder_ = false;
+    double merit = evaluate(targets, q, true);
+    double damping = 1e-6 * (1 + (A_.transpose() * A_).diagonal().maxCoeff());
+    const double dampingFloor = 1e-12 * (1 + damping);
+    for (report.iterations = 0; report.iterations < options_.maxIterations;) {
+        const Eigen::VectorXd du = solveStep(damping, q);
+        ++report.iterations;
+        // Converged when the step moves no task's target by more than the accuracy (m, or rad for a
+        // coordinate task): coordinates that no task observes (a spine between two tracked vertebrae) may
+        // drift along their flat directions without ending the solve late or never.
+        const bool small = isSmallStep(du);
+        Eigen::VectorXd trial = integrateCoordinates(model_, q, du, 1.0);
+        applyCoordinateCouplers(model_, trial);
+        closeLoops(targets, trial);
+        const double trialMerit = evaluate(targets, trial, false);
+        if (trialMerit <= merit) {
+            q = trial;
+            merit = evaluate(targets, q, true);
+            if (secondOrder_) calcSecondOrderHessian(targets, q);
+            damping = std::max(dampingFloor, damping / 3);
+            if (small && c_.lpNorm<Eigen::Infinity>() <= options_.constraintTolerance) {
+                report.converged = true;
+                break;
+            }
+        } else {
+            evaluate(targets, q, true);
+            damping *= 4;
+            // Gauss-Newton's model has failed once: from here on, the full Lagrangian Hessian.
+            if (!secondOrder_) {
+                secondOrder_ = true;
+                calcSecondOrderHessian(targets, q);
+            }
+            // The loops' curvature, which Gauss-Newton leaves out, can refuse steps far below the accuracy.
+            if (small) {
+                report.converged = c_.lpNorm<Eigen::Infinity>() <= options_.constraintTolerance;
+                break;
+            }
+        }
+    }
+    report.markersSeen = markersSeen_;
+    report.markerErrors = markerErrors_;
+    double sum = 0;
+    for (Eigen::Index t = 0; t < markerErrors_.size(); ++t) {
+        if (std::isnan(markerErrors_[t])) continue;
+        sum += markerErrors_[t] * markerErrors_[t];
+        if (markerErrors_[t] > report.maxMarkerError || report.worstMarker < 0) {
+            report.maxMarkerError = markerErrors_[t];
+            report.worstMarker = static_cast<int>(t);
+        }
+    }
+    report.rmsMarkerError = markersSeen_ > 0 ? std::sqrt(sum / markersSeen_) : 0;
+    report.constraintViolation = c_.size() > 0 ? c_.lpNorm<Eigen::Infinity>() : 0;
+    return report;
+}
+
+InverseKinematicsMotion solveInverseKinematics(InverseKinematicsSolver& solver, const Eigen::VectorXd& q0,
+                                               const std::vector<InverseKinematicsTargets>& targets,
+                                               const std::function<void(int frame, int frames)>& onFrame) {
+    InverseKinematicsMotion motion;
+    Eigen::VectorXd q = q0;
+    const int frames = static_cast<int>(targets.size());
+    for (int k = 0; k < frames; ++k) {
+        motion.reports.push_back(solver.solve(targets[static_cast<std::size_t>(k)], q));
+        motion.q.push_back(q);
+        if (onFrame) onFrame(k + 1, frames);
+    }
+    return motion;
+}
+
+}  // namespace sinew
