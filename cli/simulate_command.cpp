@@ -159,7 +159,7 @@ int runSimulate(const std::vector<std::string>& args) {
     std::printf("paper: 0.5 s per frame (whole body, 2 GHz Pentium IV)\n");
     if (summary.wireSwitches > 0) std::printf("%d wire switches (slack/taut) located\n", summary.wireSwitches);
     std::printf("max position-constraint violation %.3g m\n", summary.maxConstraintViolation);
-    std::printf("energy drift: max |E - E0| = %.3g J (%.3g of peak kinetic energy %.3g J; wire damping dissipates)\n",
+    std::printf("energy drift: max |E - E0| = %.3g J (%.3g of peak kinetic energy %.3g J; dissipated by any wire damping)\n",
                 summary.maxEnergyDrift,
                 summary.peakKineticEnergy > 0 ? summary.maxEnergyDrift / summary.peakKineticEnergy : 0.0,
                 summary.peakKineticEnergy);
