@@ -70,7 +70,8 @@ InverseKinematicsSolver::InverseKinematicsSolver(const Model& model, std::vector
             if (hasScalarSpeed(joint)) {
                 const Coordinate& c = model.getCoordinates()[static_cast<std::size_t>(joint.qStart + k)];
                 if (c.locked) continue;
-                if (c.clamped && (std::isfinite(c.rangeMin) || std::isfinite(c.rangeMax))) boundedColumns_.push_back(numFree_);
+                if (c.clamped && (std::isfinite(c.rangeMin) || std::isfinite(c.rangeMax)))
+                    boundedColumns_.push_back({numFree_, joint.qStart + k});
             }
             freeColumn_[static_cast<std::size_t>(u)] = numFree_++;
         }
@@ -201,13 +202,7 @@ void InverseKinematicsSolver::closeLoops(const InverseKinematicsTargets& targets
     for (int iteration = 0; iteration < kLoopClosingIterations; ++iteration) {
         evaluate(targets, q, true);
         if (c_.lpNorm<Eigen::Infinity>() <= kClosedGap) return;
-        const Eigen::VectorXd delta = G_.completeOrthogonalDecomposition().solve(-c_);
-        Eigen::VectorXd du = Eigen::VectorXd::Zero(model_.getNumU());
-        for (int u = 0; u < model_.getNumU(); ++u) {
-            const int col = freeColumn_[static_cast<std::size_t>(u)];
-            if (col >= 0) du[u] = delta[col];
-        }
-        q = integrateCoordinates(model_, q, du, 1.0);
+        q = integrateCoordinates(model_, q, toSpeeds(G_.completeOrthogonalDecomposition().solve(-c_)), 1.0);
         applyCoordinateCouplers(model_, q);
     }
 }
@@ -217,16 +212,6 @@ Eigen::VectorXd InverseKinematicsSolver::solveStep(double damping, const Eigen::
     // The bounded unknowns fixed at a bound this pass, and how far that moves them.
     std::vector<bool> fixed(static_cast<std::size_t>(n), false);
     Eigen::VectorXd fixedStep = Eigen::VectorXd::Zero(n);
-    std::vector<int> qOfColumn(static_cast<std::size_t>(n), -1);
-    for (int u = 0; u < model_.getNumU(); ++u) {
-        const int col = freeColumn_[static_cast<std::size_t>(u)];
-        if (col < 0) continue;
-        for (int i = 0; i < model_.getNumLinks(); ++i) {
-            const Joint& joint = model_.getJoint(i);
-            if (u >= joint.uStart && u < joint.uStart + joint.nu && hasScalarSpeed(joint))
-                qOfColumn[static_cast<std::size_t>(col)] = joint.qStart + (u - joint.uStart);
-        }
-    }
     Eigen::VectorXd delta(n);
     for (int pass = 0; pass < kActiveSetPasses; ++pass) {
         // min 1/2 |r + A d|^2 + 1/2 damping |d|^2  subject to  c + G d = 0, with the fixed entries of d given.
@@ -251,10 +236,10 @@ Eigen::VectorXd InverseKinematicsSolver::solveStep(double damping, const Eigen::
         delta = solution.head(n);
         multipliers_ = solution.tail(m);
         bool changed = false;
-        for (int col : boundedColumns_) {
+        for (const auto& [col, qi] : boundedColumns_) {
             if (fixed[static_cast<std::size_t>(col)]) continue;
-            const Coordinate& c = model_.getCoordinates()[static_cast<std::size_t>(qOfColumn[static_cast<std::size_t>(col)])];
-            const double value = q[qOfColumn[static_cast<std::size_t>(col)]];
+            const Coordinate& c = model_.getCoordinates()[static_cast<std::size_t>(qi)];
+            const double value = q[qi];
             const double next = value + delta[col];
             if (next > c.rangeMax || next < c.rangeMin) {
                 fixed[static_cast<std::size_t>(col)] = true;
@@ -264,6 +249,10 @@ Eigen::VectorXd InverseKinematicsSolver::solveStep(double damping, const Eigen::
         }
         if (!changed) break;
     }
+    return delta;
+}
+
+Eigen::VectorXd InverseKinematicsSolver::toSpeeds(const Eigen::VectorXd& delta) const {
     Eigen::VectorXd du = Eigen::VectorXd::Zero(model_.getNumU());
     for (int u = 0; u < model_.getNumU(); ++u) {
         const int col = freeColumn_[static_cast<std::size_t>(u)];
@@ -272,12 +261,7 @@ Eigen::VectorXd InverseKinematicsSolver::solveStep(double damping, const Eigen::
     return du;
 }
 
-bool InverseKinematicsSolver::isSmallStep(const Eigen::VectorXd& du) const {
-    Eigen::VectorXd delta(numFree_);
-    for (int u = 0; u < model_.getNumU(); ++u) {
-        const int col = freeColumn_[static_cast<std::size_t>(u)];
-        if (col >= 0) delta[col] = du[u];
-    }
+bool InverseKinematicsSolver::isSmallStep(const Eigen::VectorXd& delta) const {
     const Eigen::VectorXd moved = A_ * delta;
     for (std::size_t t = 0; t < markerTasks_.size(); ++t) {
         const double w = std::sqrt(markerTasks_[t].weight);
@@ -309,12 +293,13 @@ InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTa
     double damping = 1e-6 * (1 + (A_.transpose() * A_).diagonal().maxCoeff());
     const double dampingFloor = 1e-12 * (1 + damping);
     for (report.iterations = 0; report.iterations < options_.maxIterations;) {
-        const Eigen::VectorXd du = solveStep(damping, q);
+        const Eigen::VectorXd delta = solveStep(damping, q);
+        const Eigen::VectorXd du = toSpeeds(delta);
         ++report.iterations;
         // Converged when the step moves no task's target by more than the accuracy (m, or rad for a
         // coordinate task): coordinates that no task observes (a spine between two tracked vertebrae) may
         // drift along their flat directions without ending the solve late or never.
-        const bool small = isSmallStep(du);
+        const bool small = isSmallStep(delta);
         Eigen::VectorXd trial = integrateCoordinates(model_, q, du, 1.0);
         applyCoordinateCouplers(model_, trial);
         closeLoops(targets, trial);

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sinew/core/data.hpp"
@@ -74,10 +75,12 @@ private:
                         Eigen::Ref<Eigen::MatrixXd> rows) const;
     void fillLoopGaps(Eigen::VectorXd& c, Eigen::MatrixXd* G);
     void calcSecondOrderHessian(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q);
-    bool isSmallStep(const Eigen::VectorXd& du) const;
+    bool isSmallStep(const Eigen::VectorXd& delta) const;
+    // A step in the free unknowns as speeds (nu): 0 for locked, coupled and virtual-link speeds.
+    Eigen::VectorXd toSpeeds(const Eigen::VectorXd& delta) const;
     void closeLoops(const InverseKinematicsTargets& targets, Eigen::VectorXd& q);
-    // The damped, constrained Gauss-Newton step in u (nu) from the last evaluation, clamped coordinates kept
-    // within their ranges by an active set.
+    // The damped, constrained Gauss-Newton step in the free unknowns from the last evaluation, clamped
+    // coordinates kept within their ranges by an active set.
     Eigen::VectorXd solveStep(double damping, const Eigen::VectorXd& q);
 
     const Model& model_;
@@ -90,7 +93,8 @@ private:
     std::vector<int> taskCoordinate_;  // per coordinate task: its index in q
     std::vector<int> freeColumn_;      // per u: the unknown it moves, or -1 (locked, coupled or a virtual link)
     std::vector<int> couplerOfU_;      // per u: the coupler whose dependent coordinate it is, or -1
-    std::vector<int> boundedColumns_;  // free unknowns of clamped coordinates with a finite range
+    // Free unknowns of clamped coordinates with a finite range, with the coordinate's index in q.
+    std::vector<std::pair<int, int>> boundedColumns_;
     int numFree_ = 0;
     // Per evaluation: weighted residual r, its Jacobian A (rows x free unknowns), the loop gaps c and their
     // Jacobian G.
