@@ -11,7 +11,7 @@
 #include "sinew/core/data.hpp"
 #include "sinew/core/forward_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
-#include "sinew/core/random_model.hpp"
+#include "support/random_model.hpp"
 #include "sinew/core/virtual_link_equilibrium.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"

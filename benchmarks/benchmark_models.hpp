@@ -6,7 +6,7 @@
 // 1000} links, free root and ball joints, bare or with `_loops` (max(1, N/50) ball closures) and/or
 // `_wires` (10 wires per link, 2 or 3 points each); `wholebody`, a random tree of the human body's size
 // (53 links, 4 loops, 547 wires), with `_bare`, `_loops` and `_wires` variants; and `arm26` from models/.
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -18,7 +18,7 @@
 
 #include "sinew/core/census.hpp"
 #include "sinew/core/model.hpp"
-#include "sinew/simbody/simbody_model.hpp"
+#include "sinew/plugin/simbody_model.hpp"
 
 namespace sinew_benchmarks {
 

@@ -2,7 +2,7 @@
 
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
-#include "sinew/simbody/wire_paths.hpp"
+#include "sinew/plugin/wire_paths.hpp"
 
 namespace sinew_benchmarks {
 

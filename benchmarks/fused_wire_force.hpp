@@ -8,7 +8,7 @@
 // one runs the same core path code (calcWirePaths, calcWireSpeeds, calcWireLinkForces on the link poses
 // Simbody's state holds) without the per-element dispatch and cache look-ups, so the sinew/Simbody ratio
 // can be quoted against the stronger baseline. Models without virtual links only.
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 
 #include <Eigen/Core>
 #include <Simbody.h>

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "sinew/core/coordinate_preprocessing.hpp"
+#include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/data.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
 #include "sinew/io/tool_setup.hpp"

@@ -8,7 +8,7 @@
 // Every benchmark is registered once per row of the model table (benchmark_models.hpp); the model sizes go
 // into each result's counters and into the run's context, so a JSON file says what was measured.
 // scripts/bench.sh runs this program and scripts/plot_scaling.py pairs and plots the results.
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 
 #include <benchmark/benchmark.h>
 

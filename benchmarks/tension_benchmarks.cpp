@@ -33,7 +33,7 @@
 #include "sinew/core/data.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
-#include "sinew/core/random_model.hpp"
+#include "support/random_model.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
 #include "sinew/tensions/active_set_solver.hpp"

@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "sinew/core/coordinate_preprocessing.hpp"
+#include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/data.hpp"
 #include "sinew/io/tool_setup.hpp"
 #include "sinew/tools/coordinate_table.hpp"

@@ -12,8 +12,8 @@
 #include "sinew/core/forward_simulation.hpp"
 #include "sinew/io/model_loading.hpp"
 #include "sinew/io/storage_file.hpp"
-#include "sinew/simbody/forward_simulation.hpp"
-#include "sinew/simbody/wire_decorations.hpp"
+#include "sinew/plugin/simbody_simulation.hpp"
+#include "sinew/plugin/wire_decorations.hpp"
 
 namespace sinew::cli {
 namespace {

@@ -1,4 +1,4 @@
-#include "sinew/simbody/custom_mobilizer.hpp"
+#include "sinew/plugin/custom_mobilizer.hpp"
 
 namespace sinew {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Conversions between sinew's Eigen types and Simbody's, for the plugin's sources (not installed).
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 
 #include <Eigen/Core>
 #include <Simbody.h>

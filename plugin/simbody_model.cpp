@@ -1,4 +1,4 @@
-#include "sinew/simbody/simbody_model.hpp"
+#include "sinew/plugin/simbody_model.hpp"
 
 #include <algorithm>
 
@@ -6,7 +6,7 @@
 #include "sinew/core/data.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/kinematics.hpp"
-#include "sinew/simbody/custom_mobilizer.hpp"
+#include "sinew/plugin/custom_mobilizer.hpp"
 
 namespace sinew {
 namespace {

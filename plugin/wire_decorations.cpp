@@ -1,4 +1,4 @@
-#include "sinew/simbody/wire_decorations.hpp"
+#include "sinew/plugin/wire_decorations.hpp"
 
 #include <algorithm>
 #include <cstdlib>

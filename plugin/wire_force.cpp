@@ -1,4 +1,4 @@
-#include "sinew/simbody/wire_force.hpp"
+#include "sinew/plugin/wire_force.hpp"
 
 namespace sinew {
 

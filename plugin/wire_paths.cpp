@@ -1,4 +1,4 @@
-#include "sinew/simbody/wire_paths.hpp"
+#include "sinew/plugin/wire_paths.hpp"
 
 #include <algorithm>
 #include <string>

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "sinew/core/coordinate_preprocessing.hpp"
+#include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/data.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/inverse_dynamics.hpp"

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "sinew/core/error.hpp"
-#include "sinew/core/smoothing_spline.hpp"
+#include "sinew/signal/smoothing_spline.hpp"
 
 namespace sinew {
 namespace {

@@ -4,9 +4,9 @@
 #include <optional>
 #include <string>
 
-#include "sinew/core/coordinate_preprocessing.hpp"
+#include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/error.hpp"
-#include "sinew/core/smoothing_spline.hpp"
+#include "sinew/signal/smoothing_spline.hpp"
 #include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/measured_loads.hpp"
 

@@ -32,7 +32,7 @@
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/wire_path.hpp"
 #include "sinew/io/model_file.hpp"
-#include "sinew/simbody/simbody_model.hpp"
+#include "sinew/plugin/simbody_model.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include "sinew/core/forward_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/model_builder.hpp"
-#include "sinew/core/random_model.hpp"
+#include "support/random_model.hpp"
 #include "support/error_assertions.hpp"
 
 namespace sinew {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "sinew/core/error.hpp"
-#include "sinew/core/random_model.hpp"
+#include "support/random_model.hpp"
 #include "sinew/io/model_file.hpp"
 #include "support/error_assertions.hpp"
 

@@ -11,8 +11,8 @@
 #include "sinew/core/error.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
 #include "sinew/io/model_file.hpp"
-#include "sinew/simbody/forward_simulation.hpp"
-#include "sinew/simbody/simbody_model.hpp"
+#include "sinew/plugin/simbody_simulation.hpp"
+#include "sinew/plugin/simbody_model.hpp"
 #include "support/error_assertions.hpp"
 
 namespace sinew {

@@ -11,7 +11,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/forward_simulation.hpp"
-#include "sinew/simbody/forward_simulation.hpp"
+#include "sinew/plugin/simbody_simulation.hpp"
 #include "support/test_models.hpp"
 
 namespace sinew {

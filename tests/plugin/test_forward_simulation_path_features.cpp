@@ -14,7 +14,7 @@
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/wire_path.hpp"
 #include "sinew/io/model_file.hpp"
-#include "sinew/simbody/forward_simulation.hpp"
+#include "sinew/plugin/simbody_simulation.hpp"
 
 namespace sinew {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "sinew/core/forward_simulation.hpp"
-#include "sinew/simbody/forward_simulation.hpp"
+#include "sinew/plugin/simbody_simulation.hpp"
 #include "support/test_models.hpp"
 #include "support/trajectory_recording.hpp"
 

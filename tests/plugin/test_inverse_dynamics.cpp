@@ -9,7 +9,7 @@
 
 #include "sinew/core/inverse_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
-#include "sinew/simbody/simbody_model.hpp"
+#include "sinew/plugin/simbody_model.hpp"
 #include "support/allocation_counter.hpp"
 #include "support/test_models.hpp"
 

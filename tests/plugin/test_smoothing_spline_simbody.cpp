@@ -6,12 +6,12 @@
 
 #include <random>
 
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 // (the guard comes first)
 #include <SimTKmath.h>
 
-#include "sinew/core/coordinate_preprocessing.hpp"
-#include "sinew/core/smoothing_spline.hpp"
+#include "sinew/signal/coordinate_preprocessing.hpp"
+#include "sinew/signal/smoothing_spline.hpp"
 
 namespace sinew {
 namespace {

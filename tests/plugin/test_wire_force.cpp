@@ -8,7 +8,7 @@
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
-#include "sinew/simbody/simbody_model.hpp"
+#include "sinew/plugin/simbody_model.hpp"
 #include "support/test_models.hpp"
 
 namespace sinew {

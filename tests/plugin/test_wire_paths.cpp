@@ -18,7 +18,7 @@
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
 #include "sinew/io/osim_model_converter.hpp"
-#include "sinew/simbody/simbody_model.hpp"
+#include "sinew/plugin/simbody_model.hpp"
 #include "support/allocation_counter.hpp"
 #include "support/polyline_wire_force.hpp"
 #include "support/test_models.hpp"

@@ -1,15 +1,15 @@
 // Simbody's visualizer decorations against core: at a Simbody state, every DecorativeLine is a segment of
 // the wire's path as core's calcWirePaths evaluates it at the same q, in the colour of the tension that
 // core's force laws give at the same q and u; the capsules are calcBoneCapsules' placed by core's kinematics.
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 
 #include <gtest/gtest.h>
 
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/wire_path.hpp"
 #include "sinew/io/model_file.hpp"
-#include "sinew/simbody/simbody_model.hpp"
-#include "sinew/simbody/wire_decorations.hpp"
+#include "sinew/plugin/simbody_model.hpp"
+#include "sinew/plugin/wire_decorations.hpp"
 
 namespace sinew {
 namespace {

@@ -10,16 +10,16 @@
 #include <fstream>
 #include <string>
 
-#include "sinew/core/coordinate_preprocessing.hpp"
+#include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/forward_simulation.hpp"
-#include "sinew/core/smoothing_spline.hpp"
+#include "sinew/signal/smoothing_spline.hpp"
 #include "sinew/io/atomic_file.hpp"
 #include "sinew/io/model_file.hpp"
 #include "sinew/io/osim_model.hpp"
 #include "sinew/io/storage_file.hpp"
 #include "sinew/io/trc_file.hpp"
-#include "sinew/simbody/forward_simulation.hpp"
+#include "sinew/plugin/simbody_simulation.hpp"
 #include "sinew/tensions/distribution_problem.hpp"
 #include "support/error_assertions.hpp"
 #include "support/test_models.hpp"

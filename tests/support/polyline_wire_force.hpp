@@ -3,7 +3,7 @@
 // fixed on mobilized bodies, length, speed and forces computed from Simbody's own kinematics alone (no
 // sinew core), as the plugin's WireForce computed them before it ran core's path code. Plain polyline wires
 // only: their length, speed and forces must agree with the plugin's to roundoff.
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 
 #include <Simbody.h>
 #include <memory>
@@ -13,7 +13,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/core/force_law.hpp"
 #include "sinew/core/model.hpp"
-#include "sinew/simbody/simbody_model.hpp"
+#include "sinew/plugin/simbody_model.hpp"
 
 namespace sinew::test {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "sinew/core/random_model.hpp"
+#include "support/random_model.hpp"
 #include "sinew/io/model_file.hpp"
 
 namespace sinew::test {

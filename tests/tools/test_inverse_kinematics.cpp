@@ -9,7 +9,7 @@
 #include "sinew/core/coordinate_coupler.hpp"
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/model_builder.hpp"
-#include "sinew/core/random_model.hpp"
+#include "support/random_model.hpp"
 #include "sinew/tools/inverse_kinematics.hpp"
 #include "support/error_assertions.hpp"
 

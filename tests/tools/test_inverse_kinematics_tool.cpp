@@ -9,7 +9,7 @@
 
 #include "sinew/core/forward_simulation.hpp"
 #include "sinew/core/kinematics.hpp"
-#include "sinew/core/random_model.hpp"
+#include "support/random_model.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
 #include "sinew/tools/inverse_dynamics_tool.hpp"

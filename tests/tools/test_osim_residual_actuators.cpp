@@ -13,7 +13,7 @@
 #include "sinew/core/body_actuator.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
-#include "sinew/core/random_model.hpp"
+#include "support/random_model.hpp"
 #include "sinew/io/external_loads.hpp"
 #include "sinew/io/osim_model.hpp"
 #include "sinew/io/osim_model_converter.hpp"

@@ -13,7 +13,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
-#include "sinew/core/random_model.hpp"
+#include "support/random_model.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
 #include "sinew/io/model_loading.hpp"

@@ -21,7 +21,7 @@
 #include "sinew/core/wire_path.hpp"
 #include "sinew/io/model_file.hpp"
 #include "sinew/io/model_loading.hpp"
-#include "sinew/simbody/forward_simulation.hpp"
+#include "sinew/plugin/simbody_simulation.hpp"
 #include "sinew/tools/whole_body_model.hpp"
 
 namespace sinew {

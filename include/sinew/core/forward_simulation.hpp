@@ -1,7 +1,7 @@
 #pragma once
 // Forward simulation with sinew's own engine: the assembly-disassembly forward dynamics (forward_dynamics.hpp)
 // under gravity and the wires' force laws, integrated by a Runge-Kutta method of sinew's own. Simbody-free;
-// the same options run Simbody's engine through sinew/simbody/forward_simulation.hpp.
+// the same options run Simbody's engine through sinew/plugin/simbody_simulation.hpp.
 #include <Eigen/Core>
 #include <functional>
 

@@ -1,6 +1,6 @@
 #pragma once
 // What a forward simulation is asked and what it reports, independent of the engine that runs it: sinew's
-// own (core/forward_simulation.hpp, assembly-disassembly dynamics) or Simbody's (simbody/forward_simulation.hpp).
+// own (core/forward_simulation.hpp, assembly-disassembly dynamics) or Simbody's (plugin/simbody_simulation.hpp).
 // The same options give both engines the same problem, so their trajectories can be compared frame by frame.
 #include <Eigen/Core>
 #include <string>

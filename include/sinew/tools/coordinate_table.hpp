@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "sinew/core/coordinate_preprocessing.hpp"
+#include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/model.hpp"
 #include "sinew/io/storage_file.hpp"
 

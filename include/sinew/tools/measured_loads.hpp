@@ -7,7 +7,7 @@
 
 #include "sinew/core/data.hpp"
 #include "sinew/core/model.hpp"
-#include "sinew/core/smoothing_spline.hpp"
+#include "sinew/signal/smoothing_spline.hpp"
 #include "sinew/io/external_loads.hpp"
 
 namespace sinew {

@@ -11,7 +11,7 @@
 // ignored.
 #include <limits>
 
-#include "sinew/core/coordinate_preprocessing.hpp"
+#include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/model.hpp"
 #include "sinew/io/storage_file.hpp"
 

@@ -8,7 +8,7 @@
 #include <functional>
 #include <limits>
 
-#include "sinew/core/coordinate_preprocessing.hpp"
+#include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/model.hpp"
 #include "sinew/io/external_loads.hpp"
 #include "sinew/io/storage_file.hpp"

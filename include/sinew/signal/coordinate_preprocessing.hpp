@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sinew/core/smoothing_spline.hpp"
+#include "sinew/signal/smoothing_spline.hpp"
 
 namespace sinew {
 

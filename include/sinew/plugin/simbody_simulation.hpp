@@ -3,7 +3,7 @@
 // fixed interval (the paper's section 4.1 experiment with hangBy set). The options and frames are the
 // engine-independent ones of sinew/core/simulation.hpp; sinew's own engine is simulateForwardSinew
 // (sinew/core/forward_simulation.hpp).
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 
 #include <functional>
 

@@ -2,7 +2,7 @@
 // Simbody's visualizer drawing the body as sinew's pictures do (sinew/render/picture.hpp): the links as
 // capsules and every wire's evaluated path coloured by tension (ligaments by strain), from the system's
 // SimbodyWirePaths, so the visualizer shows the paths and tensions the wire forces apply.
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 
 #include <Simbody.h>
 #include <memory>
@@ -12,8 +12,8 @@
 #include "sinew/render/body_scene.hpp"
 #include "sinew/core/simulation.hpp"
 #include "sinew/render/picture.hpp"
-#include "sinew/simbody/simbody_model.hpp"
-#include "sinew/simbody/wire_paths.hpp"
+#include "sinew/plugin/simbody_model.hpp"
+#include "sinew/plugin/wire_paths.hpp"
 
 namespace sinew {
 

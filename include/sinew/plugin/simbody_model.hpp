@@ -7,7 +7,7 @@
 // them one VirtualLinkWireForce that holds them in quasi-static equilibrium. Virtual links come last in the
 // model, so Simbody's q and u are then the head of sinew's (the virtual links' entries follow from the
 // equilibrium: calcCoordinates).
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 
 #include <Eigen/Core>
 #include <Simbody.h>
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "sinew/core/model.hpp"
-#include "sinew/simbody/wire_force.hpp"
+#include "sinew/plugin/wire_force.hpp"
 
 namespace sinew {
 

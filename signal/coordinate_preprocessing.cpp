@@ -1,4 +1,4 @@
-#include "sinew/core/coordinate_preprocessing.hpp"
+#include "sinew/signal/coordinate_preprocessing.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <string>
 
 #include "sinew/core/error.hpp"
-#include "sinew/core/signal_filter.hpp"
+#include "sinew/signal/signal_filter.hpp"
 
 namespace sinew {
 namespace {

@@ -2,7 +2,7 @@
 // A sinew custom joint as Simbody's MobilizedBody::FunctionBased, built the way OpenSim's CustomJoint builds
 // it (CustomJoint::extendAddToSystem): the six transform axes' functions, each taking the one coordinate it
 // names (or none), with the joint's axes. docs/opensim-joints.md.
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 
 #include <Simbody.h>
 

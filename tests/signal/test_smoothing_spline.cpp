@@ -10,7 +10,7 @@
 #include <random>
 
 #include "sinew/core/error.hpp"
-#include "sinew/core/smoothing_spline.hpp"
+#include "sinew/signal/smoothing_spline.hpp"
 #include "support/allocation_counter.hpp"
 #include "support/error_assertions.hpp"
 

@@ -1,4 +1,4 @@
-#include "sinew/core/smoothing_spline.hpp"
+#include "sinew/signal/smoothing_spline.hpp"
 
 #include <Eigen/SVD>
 #include <Eigen/SparseCore>

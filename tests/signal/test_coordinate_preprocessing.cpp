@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "sinew/core/coordinate_preprocessing.hpp"
+#include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/io/storage_file.hpp"
 #include "support/error_assertions.hpp"

@@ -1,4 +1,4 @@
-#include "sinew/core/random_model.hpp"
+#include "support/random_model.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>

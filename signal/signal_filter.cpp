@@ -1,4 +1,4 @@
-#include "sinew/core/signal_filter.hpp"
+#include "sinew/signal/signal_filter.hpp"
 
 #include <cmath>
 #include <string>

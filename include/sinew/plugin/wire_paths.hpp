@@ -7,7 +7,7 @@
 // of the system (as Simbody's CableTrackerSubsystem serves its CableSprings), whose lazy cache entries in
 // each State say whether the evaluation it holds is that state's. Not thread-safe: the buffers are kept
 // here, one system per thread, as sinew::Data is one per thread.
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 
 #include <Eigen/Core>
 #include <Simbody.h>

@@ -1,4 +1,4 @@
-#include "sinew/simbody/forward_simulation.hpp"
+#include "sinew/plugin/simbody_simulation.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -12,7 +12,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/core/forward_simulation.hpp"
 #include "sinew/core/kinematics.hpp"
-#include "sinew/simbody/simbody_model.hpp"
+#include "sinew/plugin/simbody_model.hpp"
 
 namespace sinew {
 namespace {

@@ -10,7 +10,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "sinew/core/error.hpp"
-#include "sinew/core/signal_filter.hpp"
+#include "sinew/signal/signal_filter.hpp"
 #include "support/error_assertions.hpp"
 
 namespace sinew {

@@ -4,7 +4,7 @@
 // conditional and moving points, wraps), with its force law giving the tension. VirtualLinkWireForce: all
 // the wires that pass through virtual links, which Simbody cannot hold as bodies (they are massless), in
 // quasi-static equilibrium by sinew's core solver.
-#include "sinew/simbody/ndebug_guard.hpp"
+#include "sinew/plugin/ndebug_guard.hpp"
 
 #include <Simbody.h>
 #include <string>
@@ -12,7 +12,7 @@
 #include "sinew/core/data.hpp"
 #include "sinew/core/model.hpp"
 #include "sinew/core/virtual_link_equilibrium.hpp"
-#include "sinew/simbody/wire_paths.hpp"
+#include "sinew/plugin/wire_paths.hpp"
 
 namespace sinew {
 
