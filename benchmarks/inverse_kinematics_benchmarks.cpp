@@ -3,16 +3,31 @@
 // the previous frame's solution, as `sinew ik` runs; "cold": from the model's default pose. The peer is
 // OpenSim's own run of the same setup, not available here, so only sinew is timed. Registered only when
 // ../shared is present.
+//
+// InverseKinematics/whole_body/bvh_warm: the shipped whole-body model fitted to a synthetic BVH capture drawn
+// from itself (makeModelBvh: 240 frames at 120 Hz of every ball joint swinging up to 0.3 rad at 1 Hz, the
+// shipped map's 18 joint centres and orientations), each frame warm-started from the last, as `sinew ik
+// MODEL CAPTURE.bvh` runs: always registered. InverseKinematics/whole_body/kick_warm: the same on CMU's kick
+// 11_01.bvh (scaled to the subject), when ../shared is present.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
 
+#include <cmath>
+
+#include "sinew/core/kinematics.hpp"
+#include "sinew/io/bvh_map.hpp"
 #include "sinew/io/model_loading.hpp"
 #include "sinew/io/tool_setup.hpp"
 #include "sinew/io/trc_file.hpp"
+#include "sinew/tools/bvh_segment_scales.hpp"
+#include "sinew/tools/bvh_targets.hpp"
 #include "sinew/tools/inverse_kinematics.hpp"
+#include "sinew/tools/inverse_kinematics_tool.hpp"
+#include "sinew/tools/model_bvh.hpp"
+#include "sinew/tools/model_scaling.hpp"
 
 namespace sinew {
 namespace {
@@ -53,6 +68,79 @@ void timeFrames(benchmark::State& state, bool warm) {
     state.counters["markers"] = static_cast<double>(tasks.size());
     state.counters["iterations"] = iterations / static_cast<double>(state.iterations());
 }
+
+const std::filesystem::path kWholeBody = std::filesystem::path(SINEW_SOURCE_DIR) / "models/whole_body";
+const std::filesystem::path kKick = std::filesystem::path(SINEW_SHARED_DIR) / "data/cmu_mocap/11_01.bvh";
+
+// Every ball joint swinging about its own random axis, up to 0.3 rad, at 1 Hz.
+std::vector<Eigen::VectorXd> makeSwing(const Model& model, int frames, double frameTime) {
+    Eigen::VectorXd amplitude = Eigen::VectorXd::Zero(model.getNumU());
+    unsigned state = 12345;
+    for (int i = 0; i < model.getNumLinks(); ++i) {
+        const Joint& joint = model.getJoint(i);
+        if (joint.type != JointType::Ball) continue;
+        for (int k = 0; k < 3; ++k) {
+            state = state * 1103515245u + 12345u;
+            amplitude[joint.uStart + k] = 0.3 * (static_cast<double>(state >> 16 & 0x7fff) / 0x7fff - 0.5) * 2 / std::sqrt(3.0);
+        }
+    }
+    std::vector<Eigen::VectorXd> q;
+    for (int f = 0; f < frames; ++f)
+        q.push_back(integrateCoordinates(model, model.getDefaultQ(), amplitude * std::sin(2 * M_PI * f * frameTime), 1.0));
+    return q;
+}
+
+void timeBvhFrames(benchmark::State& state, const Model& model, const BvhMotion& motion) {
+    const BvhTargets targets = makeBvhTargets(motion, readBvhMap((kWholeBody / "bvh_map.yaml").string()), model);
+    std::vector<InverseKinematicsTargets> frames;
+    for (std::size_t f = 0; f < targets.capture.positions.size(); ++f)
+        frames.push_back({targets.capture.positions[f], Eigen::VectorXd(),
+                          targets.orientations.empty() ? std::vector<Eigen::Matrix3d>() : targets.orientations[f]});
+    std::vector<MarkerTask> tasks;
+    for (const Marker& marker : targets.markers) tasks.push_back({marker.name, 1});
+    InverseKinematicsSolver solver(model, targets.markers, tasks, {}, {}, targets.orientationTasks);
+    // The first frame solved before the clock starts: the warm frames are timed.
+    Eigen::VectorXd q = alignFreeRoot(model, targets.markers, frames[0].markers, model.getDefaultQ());
+    solver.solve(frames[0], q);
+    std::size_t k = 1;
+    double iterations = 0, rms = 0;
+    for (auto _ : state) {
+        const InverseKinematicsReport report = solver.solve(frames[k], q);
+        iterations += report.iterations;
+        rms += report.rmsMarkerError;
+        k = k + 1 < frames.size() ? k + 1 : 1;
+        if (k == 1) {
+            state.PauseTiming();
+            q = alignFreeRoot(model, targets.markers, frames[0].markers, model.getDefaultQ());
+            solver.solve(frames[0], q);
+            state.ResumeTiming();
+        }
+    }
+    state.counters["dof"] = model.getNumU();
+    state.counters["targets"] = static_cast<double>(tasks.size() + targets.orientationTasks.size());
+    state.counters["iterations"] = iterations / static_cast<double>(state.iterations());
+    state.counters["rms_m"] = rms / static_cast<double>(state.iterations());
+}
+
+const bool kWholeBodyRegistered = [] {
+    benchmark::RegisterBenchmark("InverseKinematics/whole_body/bvh_warm", [](benchmark::State& state) {
+        const Model model = loadModel((kWholeBody / "whole_body.yaml").string(), {});
+        const BvhMap map = readBvhMap((kWholeBody / "bvh_map.yaml").string());
+        timeBvhFrames(state, model, makeModelBvh(model, map, makeSwing(model, 240, 1.0 / 120), 1.0 / 120));
+    })->Unit(benchmark::kMillisecond);
+    if (!std::filesystem::exists(kKick)) {
+        std::cerr << "InverseKinematics/whole_body/kick_warm skipped: " << kKick << " is absent\n";
+        return true;
+    }
+    benchmark::RegisterBenchmark("InverseKinematics/whole_body/kick_warm", [](benchmark::State& state) {
+        const Model model = loadModel((kWholeBody / "whole_body.yaml").string(), {});
+        const BvhMap map = readBvhMap((kWholeBody / "bvh_map.yaml").string());
+        const BvhMotion kick = readBvhFile(kKick.string());
+        const BvhSegmentScales scales = estimateBvhSegmentScales(kick, map, model, inferBvhLengthUnit(kick));
+        timeBvhFrames(state, scaleModel(model, scales.linkFactors), kick);
+    })->Unit(benchmark::kMillisecond);
+    return true;
+}();
 
 const bool kRegistered = [] {
     if (!std::filesystem::exists(kGait10 / "IK/walk_Setup_IK.xml")) {

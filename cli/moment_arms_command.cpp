@@ -1,19 +1,13 @@
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
-#include "sinew/core/coordinate_coupler.hpp"
-#include "sinew/core/data.hpp"
-#include "sinew/core/error.hpp"
-#include "sinew/core/kinematics.hpp"
-#include "sinew/core/moment_arms.hpp"
-#include "sinew/core/wire_path.hpp"
+#include "sinew/io/model_loading.hpp"
 #include "sinew/io/storage_file.hpp"
 #include "sinew/tools/coordinate_table.hpp"
-#include "sinew/io/model_loading.hpp"
+#include "sinew/tools/moment_arm_motion.hpp"
 
 namespace sinew::cli {
 namespace {
@@ -38,67 +32,21 @@ int runMomentArms(const std::vector<std::string>& args) {
     if (reader.helpShown()) return 0;
     if (modelPath.empty()) return reader.failWithUsage();
     const Model model = loadModel(modelPath, [](const std::string& note) { std::printf("%s\n", note.c_str()); });
+    const bool defaultPose = motionPath.empty();
     CoordinateSamples samples;
-    if (motionPath.empty()) {
+    if (defaultPose) {
         samples.times = Eigen::VectorXd::Zero(1);
         samples.q = model.getDefaultQ().transpose();
     } else {
         samples = readCoordinateSamples(model, readStorageFile(motionPath));
     }
-    std::vector<std::string> wireNames;
-    for (const Wire& wire : model.getWires()) wireNames.push_back(wire.name);
-    const std::vector<std::string> speedNames = getSpeedNames(model);
-    StorageTable lengths{model.getName() + " wire lengths (m)", false, wireNames, {}, {}};
-    std::vector<StorageTable> momentArms(speedNames.size(),
-                                         StorageTable{"", false, wireNames, {}, {}});
-    std::vector<bool> crossed(speedNames.size(), false);
-
-    Data data(model);
-    Eigen::MatrixXd R(model.getNumWires(), model.getNumU());
     Progress progress("moment arms", static_cast<double>(samples.times.size()));
-    for (Eigen::Index row = 0; row < samples.times.size(); ++row) {
-        // As OpenSim's AnalyzeTool, which assembles each frame: dependent coordinates follow their couplers.
-        Eigen::VectorXd q = samples.q.row(row).transpose();
-        applyCoordinateCouplers(model, q);
-        calcPositionKinematics(model, data, q);
-        calcWirePaths(model, data);
-        calcMomentArms(model, data, R);
-        // Named here, at the input row, rather than later as a cell of the output file.
-        if (!data.wireLength.allFinite() || !R.allFinite())
-            for (int w = 0; w < model.getNumWires(); ++w)
-                if (!std::isfinite(data.wireLength[w]) || !R.row(w).allFinite())
-                    throw Error((motionPath.empty() ? modelPath + ": at the default pose"
-                                                    : motionPath + ": row " + std::to_string(row + 1) + " (t = " +
-                                                          std::to_string(samples.times[row]) + " s)") +
-                                ": wire '" + model.getWire(w).name +
-                                "' has a non-finite length or moment arm (check its points and wrap objects)");
-        lengths.times.push_back(samples.times[row]);
-        lengths.rows.emplace_back(data.wireLength.data(), data.wireLength.data() + data.wireLength.size());
-        for (std::size_t c = 0; c < speedNames.size(); ++c) {
-            const Eigen::VectorXd column = R.col(static_cast<Eigen::Index>(c));
-            crossed[c] = crossed[c] || column.cwiseAbs().maxCoeff() > 0;
-            momentArms[c].times.push_back(samples.times[row]);
-            momentArms[c].rows.emplace_back(column.data(), column.data() + column.size());
-        }
-        progress.update(static_cast<double>(row + 1));
-    }
+    MomentArmMotion motion = calcMomentArmMotion(model, samples, defaultPose ? modelPath : motionPath, !defaultPose,
+                                                 [&](int frame, int) { progress.update(frame); });
     progress.finish();
-    std::filesystem::create_directories(outputDir);
+    const int files = writeMomentArmFiles(model, motion, outputDir);
+    const StorageTable& lengths = motion.lengths;
     const std::filesystem::path dir(outputDir);
-    OutputFileSet outputs;
-    writeStorageFile(lengths, outputs, (dir / (model.getName() + "_Length.sto")).string());
-    int files = 1;
-    for (std::size_t c = 0; c < speedNames.size(); ++c) {
-        const std::string path = (dir / (model.getName() + "_MomentArm_" + speedNames[c] + ".sto")).string();
-        if (!crossed[c]) {
-            outputs.retire(path);  // an earlier run's file for a coordinate this motion's wires no longer cross
-            continue;
-        }
-        momentArms[c].name = model.getName() + " moment arms about " + speedNames[c] + " (m or m/m)";
-        writeStorageFile(momentArms[c], outputs, path);
-        ++files;
-    }
-    outputs.commit();
     std::printf("%d wires, %zu rows: %d files in %s\n", model.getNumWires(), lengths.times.size(), files,
                 std::filesystem::absolute(dir).string().c_str());
     return 0;

@@ -11,9 +11,9 @@
 #include "sinew/core/error.hpp"
 #include "sinew/core/forward_simulation.hpp"
 #include "sinew/io/model_loading.hpp"
-#include "sinew/io/storage_file.hpp"
 #include "sinew/plugin/simbody_simulation.hpp"
 #include "sinew/plugin/wire_decorations.hpp"
+#include "sinew/tools/simulation_recorder.hpp"
 
 namespace sinew::cli {
 namespace {
@@ -40,6 +40,37 @@ const char* kUsage =
     "  <model>_*_incomplete.sto, removes the complete files of an earlier run, and exits with status 1.\n";
 
 enum class Engine { Simbody, Sinew };
+
+void printRunHeader(const Model& model, const ForwardSimulationOptions& options, Engine engine) {
+    std::printf("simulating %s (%d links, %d DOF, %d wires, %d loops) for %g s%s\n", model.getName().c_str(),
+                model.getNumLinks(), model.getNumU(), model.getNumWires(), model.getNumLoops(), options.duration,
+                options.hangBy.empty() ? "" : (", hung by " + options.hangBy).c_str());
+    const bool adaptive = options.integrator == ForwardSimulationOptions::Integrator::Adaptive;
+    char integratorText[96];
+    if (adaptive)
+        std::snprintf(integratorText, sizeof integratorText, "%s, accuracy %g",
+                      engine == Engine::Sinew ? "Dormand-Prince 5(4)" : "Runge-Kutta-Merson", options.accuracy);
+    else
+        std::snprintf(integratorText, sizeof integratorText, "%s at a fixed step <= %g s",
+                      engine == Engine::Sinew ? "classic Runge-Kutta 4" : "Runge-Kutta-Merson", options.fixedStep);
+    std::printf("engine: %s (%s)\n", engine == Engine::Sinew ? "sinew" : "simbody", integratorText);
+}
+
+void printSummary(const SimulationSummary& summary, const SimulationRecorder& recorder) {
+    std::printf("%d frames, %d integrator steps, %.3f s wall: %.3g s per output frame, %.3g s per integrator step\n",
+                summary.frames, summary.steps, summary.wallSeconds, summary.wallSeconds / summary.frames,
+                summary.wallSeconds / std::max(summary.steps, 1));
+    // The paper's section 4.1 figure, for the whole-body hang (Nakamura et al.: passive wires, hung by the head).
+    std::printf("paper: 0.5 s per frame (whole body, 2 GHz Pentium IV)\n");
+    if (summary.wireSwitches > 0) std::printf("%d wire switches (slack/taut) located\n", summary.wireSwitches);
+    std::printf("max position-constraint violation %.3g m\n", summary.maxConstraintViolation);
+    std::printf("energy drift: max |E - E0| = %.3g J (%.3g of peak kinetic energy %.3g J; dissipated by any wire damping)\n",
+                summary.maxEnergyDrift,
+                summary.peakKineticEnergy > 0 ? summary.maxEnergyDrift / summary.peakKineticEnergy : 0.0,
+                summary.peakKineticEnergy);
+    std::printf("output files:\n");
+    for (int k = 0; k < SimulationRecorder::kNumTables; ++k) std::printf("  %s\n", recorder.getPath(k, false).c_str());
+}
 
 }  // namespace
 
@@ -83,88 +114,32 @@ int runSimulate(const std::vector<std::string>& args) {
     if (visualize) visualizer.emplace(model, options.hangBy);
     std::filesystem::create_directories(outputDir);
 
-    StorageTable coordinates{model.getName() + " coordinates", false, getCoordinateNames(model), {}, {}};
-    StorageTable speeds{model.getName() + " speeds", false, getSpeedNames(model), {}, {}};
-    StorageTable tensions{model.getName() + " wire tensions (N)", false, {}, {}, {}};
-    for (const Wire& wire : model.getWires()) tensions.columns.push_back(wire.name);
-    StorageTable energy{model.getName() + " energy (J)", false, {"kinetic", "potential", "total"}, {}, {}};
+    SimulationRecorder recorder(model, outputDir);
 
-    std::printf("simulating %s (%d links, %d DOF, %d wires, %d loops) for %g s%s\n", model.getName().c_str(),
-                model.getNumLinks(), model.getNumU(), model.getNumWires(), model.getNumLoops(), options.duration,
-                options.hangBy.empty() ? "" : (", hung by " + options.hangBy).c_str());
-    const bool adaptive = options.integrator == ForwardSimulationOptions::Integrator::Adaptive;
-    char integratorText[96];
-    if (adaptive)
-        std::snprintf(integratorText, sizeof integratorText, "%s, accuracy %g",
-                      engine == Engine::Sinew ? "Dormand-Prince 5(4)" : "Runge-Kutta-Merson", options.accuracy);
-    else
-        std::snprintf(integratorText, sizeof integratorText, "%s at a fixed step <= %g s",
-                      engine == Engine::Sinew ? "classic Runge-Kutta 4" : "Runge-Kutta-Merson", options.fixedStep);
-    std::printf("engine: %s (%s)\n", engine == Engine::Sinew ? "sinew" : "simbody", integratorText);
+    printRunHeader(model, options, engine);
     Progress progress("simulate", options.duration);
     const auto simulate = engine == Engine::Sinew ? simulateForwardSinew : simulateForward;
-    const std::filesystem::path dir(outputDir);
-    const std::string stem = model.getName();
-    const char* kinds[] = {"coordinates", "speeds", "tensions", "energy"};
-    StorageTable* tables[] = {&coordinates, &speeds, &tensions, &energy};
-    auto outputPath = [&](int k, bool incomplete) {
-        return (dir / (stem + "_" + kinds[k] + (incomplete ? "_incomplete" : "") + ".sto")).string();
-    };
-    // Writes the frames reached as the complete set or as the marked incomplete one, retiring the other.
-    auto writeOutputs = [&](bool incomplete, const std::string& why) {
-        OutputFileSet outputs;
-        for (int k = 0; k < 4; ++k) {
-            if (incomplete) {
-                tables[k]->header = {"incomplete: " + why};
-                tables[k]->name += " (INCOMPLETE)";
-            }
-            writeStorageFile(*tables[k], outputs, outputPath(k, incomplete));
-            outputs.retire(outputPath(k, !incomplete));
-        }
-        outputs.commit();
-    };
     SimulationSummary summary;
     try {
         summary = simulate(model, options, [&](const SimulationFrame& frame) {
-            auto append = [&](StorageTable& table, const Eigen::VectorXd& row) {
-                table.times.push_back(frame.time);
-                table.rows.emplace_back(row.data(), row.data() + row.size());
-            };
-            append(coordinates, frame.q);
-            append(speeds, frame.u);
-            append(tensions, frame.tensions);
-            append(energy, Eigen::Vector3d(frame.kineticEnergy, frame.potentialEnergy,
-                                           frame.kineticEnergy + frame.potentialEnergy));
+            recorder.record(frame);
             progress.update(frame.time);
             if (visualizer) visualizer->show(frame);
         });
     } catch (const Error& e) {
         progress.finish();
-        if (coordinates.times.empty()) throw;
+        if (recorder.getNumFrames() == 0) throw;
         std::string why = e.what();
         std::replace(why.begin(), why.end(), '\n', ' ');
-        writeOutputs(true, why);
-        std::fprintf(stderr, "%zu frames up to t = %g s written as %s and the other *_incomplete.sto files\n",
-                     coordinates.times.size(), coordinates.times.back(),
-                     std::filesystem::absolute(outputPath(0, true)).string().c_str());
+        recorder.write(true, why);
+        std::fprintf(stderr, "%d frames up to t = %g s written as %s and the other *_incomplete.sto files\n",
+                     recorder.getNumFrames(), recorder.getLastTime(), recorder.getPath(0, true).c_str());
         throw;
     }
     progress.finish();
-    writeOutputs(false, "");
+    recorder.write(false);
 
-    std::printf("%d frames, %d integrator steps, %.3f s wall: %.3g s per output frame, %.3g s per integrator step\n",
-                summary.frames, summary.steps, summary.wallSeconds, summary.wallSeconds / summary.frames,
-                summary.wallSeconds / std::max(summary.steps, 1));
-    // The paper's section 4.1 figure, for the whole-body hang (Nakamura et al.: passive wires, hung by the head).
-    std::printf("paper: 0.5 s per frame (whole body, 2 GHz Pentium IV)\n");
-    if (summary.wireSwitches > 0) std::printf("%d wire switches (slack/taut) located\n", summary.wireSwitches);
-    std::printf("max position-constraint violation %.3g m\n", summary.maxConstraintViolation);
-    std::printf("energy drift: max |E - E0| = %.3g J (%.3g of peak kinetic energy %.3g J; dissipated by any wire damping)\n",
-                summary.maxEnergyDrift,
-                summary.peakKineticEnergy > 0 ? summary.maxEnergyDrift / summary.peakKineticEnergy : 0.0,
-                summary.peakKineticEnergy);
-    std::printf("output files:\n");
-    for (int k = 0; k < 4; ++k) std::printf("  %s\n", std::filesystem::absolute(outputPath(k, false)).string().c_str());
+    printSummary(summary, recorder);
     return 0;
 }
 

@@ -8,17 +8,18 @@
 #include "progress.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/io/model_loading.hpp"
+#include "sinew/tensions/tension_method_registry.hpp"
 #include "sinew/tools/tension_motion.hpp"
 
 namespace sinew::cli {
 namespace {
 
 const char* kUsage =
-    "usage: sinew tensions MODEL MOTION --method lp|qp|so [options] -o TENSIONS.sto\n"
+    "usage: sinew tensions MODEL MOTION --method lp|qp|so|ipopt [options] -o TENSIONS.sto\n"
     "  Wire tensions per frame of a coordinates table (.mot/.sto): inverse dynamics (processed as OpenSim's\n"
-    "  ID tool), the wire Jacobian, then the LP (least total tension), the QP (least squares) or OpenSim's\n"
-    "  static optimization (least squared activations). DOFs no wire reaches (a floating root) keep their\n"
-    "  generalized force as residual. Writes TENSIONS.sto, TENSIONS_report.sto (per frame: status 0 optimal,\n"
+    "  ID tool), the wire Jacobian, then the LP (least total tension), the QP (least squares), OpenSim's\n"
+    "  static optimization (least squared activations) or ipopt (the QP's problem by Ipopt). DOFs no wire\n"
+    "  reaches (a floating root) keep their generalized force as residual. Writes TENSIONS.sto, TENSIONS_report.sto (per frame: status 0 optimal,\n"
     "  1 infeasible, 2 failed; Z; active wires; ipopt 1 where the Ipopt fallback solved the frame;\n"
     "  residuals and phase-1 reserves per DOF: the least extra generalized force an infeasible frame\n"
     "  needs) and, for so,\n"
@@ -26,6 +27,8 @@ const char* kUsage =
     "  empty cells are left out of the splines and written with status 3 and zero tensions, their times\n"
     "  listed. MODEL: .osim or .yaml.\n"
     "  --external-loads X.xml   OpenSim ExternalLoads (e.g. ground reactions)\n"
+    "  --no-contact             without external loads, do not give the model's feet (its contacts: section)\n"
+    "                           contact forces on the frames they touch the ground (TENSIONS_contact.sto)\n"
     "  --lowpass HZ             low-pass cut-off for the coordinates (default: no filtering)\n"
     "  --start T, --end T       time range, s (default: the whole motion)\n"
     "  --tolerance TAU          LP torque band, N m (default 1e-3)\n"
@@ -45,6 +48,7 @@ int runTensions(const std::vector<std::string>& args) {
     while (reader.next()) {
         if (reader.is("--method")) method = reader.value();
         else if (reader.is("--external-loads")) loadsPath = reader.value();
+        else if (reader.is("--no-contact")) options.contact = false;
         else if (reader.is("--lowpass")) options.lowpassCutoffHz = reader.number();
         else if (reader.is("--start")) options.startTime = reader.number();
         else if (reader.is("--end")) options.finalTime = reader.number();
@@ -54,7 +58,8 @@ int runTensions(const std::vector<std::string>& args) {
     }
     if (reader.helpShown()) return 0;
     if (modelPath.empty() || motionPath.empty() || output.empty() || method.empty()) return reader.failWithUsage();
-    options.analysis.method = parseTensionMethod(method);
+    TensionMethodRegistry::global().get(method);  // an unknown method fails before the model loads
+    options.analysis.method = method;
     const Model model = loadModel(modelPath, [](const std::string& note) { std::printf("%s\n", note.c_str()); });
     std::optional<ExternalLoads> loads;
     if (!loadsPath.empty()) loads = readExternalLoads(loadsPath);
@@ -73,10 +78,14 @@ int runTensions(const std::vector<std::string>& args) {
     OutputFileSet outputs;
     writeStorageFile(result.tensions, outputs, output);
     writeStorageFile(result.report, outputs, withSuffix(output, "_report"));
-    if (options.analysis.method == TensionMethod::StaticOptimization)
+    if (!result.activations.columns.empty())
         writeStorageFile(result.activations, outputs, withSuffix(output, "_activations"));
     else
         outputs.retire(withSuffix(output, "_activations"));
+    if (!result.contact.columns.empty())
+        writeStorageFile(result.contact, outputs, withSuffix(output, "_contact"));
+    else
+        outputs.retire(withSuffix(output, "_contact"));
     outputs.commit();
     std::printf("%zu frames, %zu wires (%s) -> %s\n", result.tensions.times.size(), result.tensions.columns.size(),
                 method.c_str(), output.c_str());

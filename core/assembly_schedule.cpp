@@ -46,6 +46,16 @@ AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) 
     }
     buildBodies(model);
     const int numTreeJoints = static_cast<int>(joints_.size());
+    addLoopJoints(model);
+    addHangJoint(model, hangLink);
+    chooseTreeOperations(model, hangLink);
+    buildLeaves(numTreeJoints);
+    if (kind == Kind::Serial) scheduleSerial(numTreeJoints);
+    else scheduleBalanced(numTreeJoints);
+}
+
+// An assembly joint per loop, between the bodies of its two links.
+void AssemblySchedule::addLoopJoints(const Model& model) {
     for (int k = 0; k < model.getNumLoops(); ++k) {
         const Loop& loop = model.getLoop(k);
         const int a = linkBody_[static_cast<std::size_t>(loop.linkA)];
@@ -60,20 +70,23 @@ AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) 
                         "', which are welded together");
         joints_.push_back({AssemblyJoint::Kind::Loop, AssemblyJoint::Motion::Ball, k, a, b});
     }
-    if (hangLink >= 0) {
-        const int body = linkBody_[static_cast<std::size_t>(hangLink)];
-        if (body == kNoBody)
-            throw Error("model '" + model.getName() + "': cannot hang by virtual link '" + model.getLink(hangLink).name +
-                        "' (it is massless); hang by a link with mass");
-        if (body != kGroundBody)
-            joints_.push_back({AssemblyJoint::Kind::Hang, AssemblyJoint::Motion::Weld, hangLink, kGroundBody, body});
-    }
-    chooseTreeOperations(model, hangLink);
+}
 
-    // Leaves: each body with the handles of the joints that touch it, but for what is folded: both handles
-    // of an Absorb, the alpha handle of an AbsorbSubassembly. Then ground.
-    const int numBodies = getNumBodies();
-    handles_.assign(static_cast<std::size_t>(numBodies + 1), {});
+// The hang's weld to ground, unless the link is welded to ground already (or hangLink is -1).
+void AssemblySchedule::addHangJoint(const Model& model, int hangLink) {
+    if (hangLink < 0) return;
+    const int body = linkBody_[static_cast<std::size_t>(hangLink)];
+    if (body == kNoBody)
+        throw Error("model '" + model.getName() + "': cannot hang by virtual link '" + model.getLink(hangLink).name +
+                    "' (it is massless); hang by a link with mass");
+    if (body != kGroundBody)
+        joints_.push_back({AssemblyJoint::Kind::Hang, AssemblyJoint::Motion::Weld, hangLink, kGroundBody, body});
+}
+
+// Leaves: each body with the handles of the joints that touch it, but for what is folded: both handles
+// of an Absorb, the alpha handle of an AbsorbSubassembly. Then ground.
+void AssemblySchedule::buildLeaves(int numTreeJoints) {
+    handles_.assign(static_cast<std::size_t>(getNumBodies() + 1), {});
     for (int j = 0; j < static_cast<int>(joints_.size()); ++j) {
         const AssemblyOperation::Kind how = j < numTreeJoints ? treeOperation_[static_cast<std::size_t>(j)]
                                                               : AssemblyOperation::Kind::Join;
@@ -84,66 +97,69 @@ AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) 
     mergedInto_.resize(handles_.size());
     std::iota(mergedInto_.begin(), mergedInto_.end(), 0);
     closed_.assign(joints_.size(), false);
+}
 
-    if (kind == Kind::Serial) {
-        // Bodies are numbered parents first, so the reverse order visits tips first: fold the children that
-        // no loop crosses into the body, then, if its subtree holds loop ends, make its leaf and join the
-        // children that loops cross. Ground (kGroundBody = -1) comes last; its leaf needs no operation (it
-        // does not move: Phi = 0, b = 0).
-        std::vector<std::vector<int>> children(static_cast<std::size_t>(numBodies + 1));
-        for (int j = 0; j < numTreeJoints; ++j)
-            children[static_cast<std::size_t>(leafOf(joints_[static_cast<std::size_t>(j)].alphaBody))].push_back(j);
-        for (int body = numBodies - 1; body >= kGroundBody; --body) {
-            const std::vector<int>& mine = children[static_cast<std::size_t>(leafOf(body))];
-            for (int j : mine) {
-                const AssemblyOperation::Kind how = treeOperation_[static_cast<std::size_t>(j)];
-                if (how == AssemblyOperation::Kind::Absorb) emitAbsorb(j);
-                if (how == AssemblyOperation::Kind::AbsorbSubassembly) emitAbsorbSubassembly(j);
-            }
-            if (body != kGroundBody) {
-                if (handles_[static_cast<std::size_t>(body)].empty()) continue;  // folded whole into its parent
-                emitLeaf(body);
-            }
-            for (int j : mine) {
-                if (treeOperation_[static_cast<std::size_t>(j)] != AssemblyOperation::Kind::Join) continue;
-                emitJoin(j);
-                closeReadyLoops(false);
-            }
+// Bodies are numbered parents first, so the reverse order visits tips first: fold the children that no loop
+// crosses into the body, then, if its subtree holds loop ends, make its leaf and join the children that
+// loops cross. Ground (kGroundBody = -1) comes last; its leaf needs no operation (it does not move: Phi = 0,
+// b = 0). One operation per level: each depends on the one before.
+void AssemblySchedule::scheduleSerial(int numTreeJoints) {
+    const int numBodies = getNumBodies();
+    std::vector<std::vector<int>> children(static_cast<std::size_t>(numBodies + 1));
+    for (int j = 0; j < numTreeJoints; ++j)
+        children[static_cast<std::size_t>(leafOf(joints_[static_cast<std::size_t>(j)].alphaBody))].push_back(j);
+    for (int body = numBodies - 1; body >= kGroundBody; --body) {
+        const std::vector<int>& mine = children[static_cast<std::size_t>(leafOf(body))];
+        for (int j : mine) {
+            const AssemblyOperation::Kind how = treeOperation_[static_cast<std::size_t>(j)];
+            if (how == AssemblyOperation::Kind::Absorb) emitAbsorb(j);
+            if (how == AssemblyOperation::Kind::AbsorbSubassembly) emitAbsorbSubassembly(j);
         }
-        // One operation per level: each depends on the one before.
-        levelStarts_.resize(operations_.size() + 1);
-        std::iota(levelStarts_.begin(), levelStarts_.end(), 0);
-    } else {
-        levelStarts_.push_back(0);
-        for (int body = 0; body < numBodies; ++body) emitLeaf(body);
+        if (body != kGroundBody) {
+            if (handles_[static_cast<std::size_t>(body)].empty()) continue;  // folded whole into its parent
+            emitLeaf(body);
+        }
+        for (int j : mine) {
+            if (treeOperation_[static_cast<std::size_t>(j)] != AssemblyOperation::Kind::Join) continue;
+            emitJoin(j);
+            closeReadyLoops(false);
+        }
+    }
+    levelStarts_.resize(operations_.size() + 1);
+    std::iota(levelStarts_.begin(), levelStarts_.end(), 0);
+}
+
+// Every body's leaf on the first level; then level by level, the pairs whose result has the fewest handles
+// joined first, each subassembly once per level, and the loops that became closable closed.
+void AssemblySchedule::scheduleBalanced(int numTreeJoints) {
+    levelStarts_.push_back(0);
+    for (int body = 0; body < getNumBodies(); ++body) emitLeaf(body);
+    levelStarts_.push_back(static_cast<int>(operations_.size()));
+    std::vector<int> pending(static_cast<std::size_t>(numTreeJoints));
+    std::iota(pending.begin(), pending.end(), 0);
+    while (!pending.empty()) {
+        auto cost = [&](int j) {
+            const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
+            return handles_[static_cast<std::size_t>(currentOf(joint.alphaBody))].size() +
+                   handles_[static_cast<std::size_t>(currentOf(joint.betaBody))].size();
+        };
+        std::stable_sort(pending.begin(), pending.end(), [&](int x, int y) { return cost(x) < cost(y); });
+        std::set<int> busy;
+        std::vector<int> later;
+        for (int j : pending) {
+            const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
+            const int a = currentOf(joint.alphaBody);
+            const int b = currentOf(joint.betaBody);
+            if (busy.count(a) || busy.count(b)) {
+                later.push_back(j);
+                continue;
+            }
+            emitJoin(j);
+            busy.insert({a, b, operations_.back().result});
+        }
         levelStarts_.push_back(static_cast<int>(operations_.size()));
-        std::vector<int> pending(static_cast<std::size_t>(numTreeJoints));
-        std::iota(pending.begin(), pending.end(), 0);
-        while (!pending.empty()) {
-            // Join the pairs whose result has the fewest handles first; each subassembly once per level.
-            auto cost = [&](int j) {
-                const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
-                return handles_[static_cast<std::size_t>(currentOf(joint.alphaBody))].size() +
-                       handles_[static_cast<std::size_t>(currentOf(joint.betaBody))].size();
-            };
-            std::stable_sort(pending.begin(), pending.end(), [&](int x, int y) { return cost(x) < cost(y); });
-            std::set<int> busy;
-            std::vector<int> later;
-            for (int j : pending) {
-                const AssemblyJoint& joint = joints_[static_cast<std::size_t>(j)];
-                const int a = currentOf(joint.alphaBody);
-                const int b = currentOf(joint.betaBody);
-                if (busy.count(a) || busy.count(b)) {
-                    later.push_back(j);
-                    continue;
-                }
-                emitJoin(j);
-                busy.insert({a, b, operations_.back().result});
-            }
-            levelStarts_.push_back(static_cast<int>(operations_.size()));
-            pending = later;
-            closeReadyLoops(true);
-        }
+        pending = later;
+        closeReadyLoops(true);
     }
 }
 

@@ -49,6 +49,7 @@ Data::Data(const Model& model) {
         displacedPath.resize(static_cast<std::size_t>(longestPath));
     }
     F_G.assign(links, SpatialVector::Zero());
+    scratchF_G.assign(links, SpatialVector::Zero());
 }
 
 }  // namespace sinew

@@ -163,6 +163,26 @@ Eigen::Matrix<double, 6, 5> pinBasis(const Eigen::Matrix3d& R) {
     return T;
 }
 
+// Bodies, assembly joints, operations, subassemblies, handles and links are numbered by int, as the
+// schedule numbers them (ground is kGroundBody = -1); at() is the one place such a number indexes a vector.
+template <typename T>
+const T& at(const std::vector<T>& v, int i) { return v[static_cast<std::size_t>(i)]; }
+template <typename T>
+T& at(std::vector<T>& v, int i) { return v[static_cast<std::size_t>(i)]; }
+
+// A subassembly's handle equations a_h = sum_k Phi_hk f_k + b_h over its numHandles pending handles.
+struct HandleEquations {
+    std::vector<Matrix6d>& blocks;         // Phi, numHandles x numHandles blocks, row-major
+    std::vector<SpatialVector>& offsets;   // b
+    int numHandles;
+
+    Matrix6d& Phi(int h, int k) const { return at(blocks, h * numHandles + k); }
+    SpatialVector& b(int h) const { return at(offsets, h); }
+};
+
+// The handle of a list that is the c-th once `removed` is taken out of it.
+int skipHandle(int c, int removed) { return c < removed ? c : c + 1; }
+
 // Everything calcForwardDynamics' stages share.
 struct Evaluation {
     const Model& model;
@@ -172,27 +192,38 @@ struct Evaluation {
     const std::vector<SpatialVector>& linkForces;
     ForwardDynamicsData& fd;
 
+    const AssemblyJoint& joint(int j) const { return at(schedule.getJoints(), j); }
+    const AssemblyOperation& operation(int o) const { return at(schedule.getOperations(), o); }
+    HandleEquations handleEquations(int subassembly) const {
+        std::vector<SpatialVector>& b = at(fd.b, subassembly);
+        return {at(fd.Phi, subassembly), b, static_cast<int>(b.size())};
+    }
+    // The orientation of a tree joint's F frame in ground.
+    const Eigen::Matrix3d& R_GF(const AssemblyJoint& aj) const { return at(data.R_GF, aj.index); }
+    const double* jointTau(const AssemblyJoint& aj) const { return tau.data() + model.getJoint(aj.index).uStart; }
+    double* jointUdot(const AssemblyJoint& aj) const { return fd.udot.data() + model.getJoint(aj.index).uStart; }
+    // The spatial forces on handles 2j (alpha) and 2j + 1 (beta) of joint j.
+    SpatialVector& alphaForce(int j) const { return at(fd.handleForce, 2 * j); }
+    SpatialVector& betaForce(int j) const { return at(fd.handleForce, 2 * j + 1); }
+
     // A body's velocity or acceleration (about its reference point) taken about point p; zero for ground.
     SpatialVector motionAt(const std::vector<SpatialVector>& ofBody, int body, const Eigen::Vector3d& p) const {
         if (body == kGroundBody) return SpatialVector::Zero();
-        const std::size_t bb = static_cast<std::size_t>(body);
-        return shiftMotion(ofBody[bb], p - fd.jointPoint[bb]);
+        return shiftMotion(at(ofBody, body), p - at(fd.jointPoint, body));
     }
-    const Eigen::Vector3d& pointOfHandle(int handle) const { return fd.jointPoint[static_cast<std::size_t>(handle / 2)]; }
+    const Eigen::Vector3d& pointOfHandle(int handle) const { return at(fd.jointPoint, handle / 2); }
 
     // The point each assembly joint's quantities are taken about.
-    void placeJoint(std::size_t j) const {
-        const AssemblyJoint& aj = schedule.getJoints()[j];
-        const std::size_t l = static_cast<std::size_t>(aj.index);
+    void placeJoint(int j) const {
+        const AssemblyJoint& aj = joint(j);
         switch (aj.kind) {
-            case AssemblyJoint::Kind::Tree: fd.jointPoint[j] = data.p_GM[l]; break;
+            case AssemblyJoint::Kind::Tree: at(fd.jointPoint, j) = at(data.p_GM, aj.index); break;
             case AssemblyJoint::Kind::Loop: {
                 const Loop& loop = model.getLoop(aj.index);
-                const std::size_t a = static_cast<std::size_t>(loop.linkA);
-                fd.jointPoint[j] = data.p_GB[a] + data.R_GB[a] * loop.p_A;
+                at(fd.jointPoint, j) = at(data.p_GB, loop.linkA) + at(data.R_GB, loop.linkA) * loop.p_A;
                 break;
             }
-            case AssemblyJoint::Kind::Hang: fd.jointPoint[j] = data.p_GB[l]; break;
+            case AssemblyJoint::Kind::Hang: at(fd.jointPoint, j) = at(data.p_GB, aj.index); break;
         }
     }
 
@@ -200,29 +231,26 @@ struct Evaluation {
     // (its inboard joint's centre), where the central inertia is diag(Ic, m 1) about the centre of mass c;
     // they start the body's articulated inertia and bias (docs/closed-chain.md, "Bodies").
     void prepareBody(int b) const {
-        const std::size_t bb = static_cast<std::size_t>(b);
         const AssemblyBody& body = schedule.getBody(b);
-        const std::size_t first = static_cast<std::size_t>(body.links.front());
-        const Eigen::Matrix3d& R = data.R_GB[first];
-        const Eigen::Vector3d c = data.p_GB[first] + R * body.com;
+        const int first = body.links.front();
+        const Eigen::Matrix3d& R = at(data.R_GB, first);
+        const Eigen::Vector3d c = at(data.p_GB, first) + R * body.com;
         const Eigen::Matrix3d Ic = R * body.inertia * R.transpose();
-        const Eigen::Vector3d& o = fd.jointPoint[bb];
-        const Eigen::Vector3d& w = data.w_GB[first];
-        const Eigen::Vector3d vc = data.v_GB[first] + w.cross(c - data.p_GB[first]);
+        const Eigen::Vector3d& o = at(fd.jointPoint, b);
+        const Eigen::Vector3d& w = at(data.w_GB, first);
+        const Eigen::Vector3d vc = at(data.v_GB, first) + w.cross(c - at(data.p_GB, first));
         SpatialVector biasAtCom;
         biasAtCom.head<3>() = w.cross(Ic * w);
         biasAtCom.tail<3>() = body.mass * (w.cross(vc) - model.getGravity());
         SpatialVector bias = shiftForce(biasAtCom, o - c);
-        for (int link : body.links) {
-            const std::size_t l = static_cast<std::size_t>(link);
-            bias -= shiftForce(linkForces[l], o - data.p_GB[l]);
-        }
-        fd.articulatedBias[bb] = bias;
-        fd.velocity[bb].head<3>() = w;
-        fd.velocity[bb].tail<3>() = vc + w.cross(o - c);
+        for (int link : body.links) bias -= shiftForce(at(linkForces, link), o - at(data.p_GB, link));
+        at(fd.articulatedBias, b) = bias;
+        SpatialVector& v = at(fd.velocity, b);
+        v.head<3>() = w;
+        v.tail<3>() = vc + w.cross(o - c);
         // RBDA eq. 2.63 with the centre of mass at e = c - o.
         const Eigen::Matrix3d E = skew(c - o);
-        Matrix6d& I = fd.articulatedInertia[bb];
+        Matrix6d& I = at(fd.articulatedInertia, b);
         const Eigen::Matrix3d rotational = Ic - body.mass * E * E;
         I.topLeftCorner<3, 3>() = 0.5 * (rotational + rotational.transpose());  // exactly symmetric, see absorb()
         I.topRightCorner<3, 3>() = body.mass * E;
@@ -233,40 +261,39 @@ struct Evaluation {
     // Relative motion S u = v_beta - v_alpha about the joint point and its bias c = dS/dt u = v_alpha x (S u),
     // plus, for a free joint, (R v_FM) x (R w_FM): its centre moves in the parent (docs/closed-chain.md,
     // "Joints").
-    void prepareJoint(std::size_t j) const {
-        const AssemblyJoint& aj = schedule.getJoints()[j];
-        const Eigen::Vector3d& p = fd.jointPoint[j];
+    void prepareJoint(int j) const {
+        const AssemblyJoint& aj = joint(j);
+        const Eigen::Vector3d& p = at(fd.jointPoint, j);
         const SpatialVector vAlpha = motionAt(fd.velocity, aj.alphaBody, p);
         const SpatialVector relative = motionAt(fd.velocity, aj.betaBody, p) - vAlpha;
-        fd.jointBias[j] = crossMotion(vAlpha, relative);
-        if (aj.motion == Motion::Free)
-            fd.jointBias[j].tail<3>() += relative.tail<3>().cross(relative.head<3>());
+        SpatialVector& c = at(fd.jointBias, j);
+        c = crossMotion(vAlpha, relative);
+        if (aj.motion == Motion::Free) c.tail<3>() += relative.tail<3>().cross(relative.head<3>());
     }
 
     // Absorb (docs/closed-chain.md, "Absorb"): the child body's articulated inertia I and bias p about the
     // joint centre pass through the joint to the parent as Ia = I - U D^-1 U^T and pa = p + Ia c +
     // U D^-1 (tau - S^T p), with U = I S and D = S^T U (RBDA eqs. 7.37-7.40, Table 7.1), taken about the
     // parent's point. Ground takes nothing.
-    void absorb(std::size_t j) const {
-        const AssemblyJoint& aj = schedule.getJoints()[j];
-        const std::size_t child = static_cast<std::size_t>(aj.betaBody);
-        const Matrix6d& I = fd.articulatedInertia[child];
-        const SpatialVector& p = fd.articulatedBias[child];
-        const Eigen::Matrix3d& R = data.R_GF[static_cast<std::size_t>(aj.index)];
+    void absorb(int j) const {
+        const AssemblyJoint& aj = joint(j);
+        const Matrix6d& I = at(fd.articulatedInertia, aj.betaBody);
+        const SpatialVector& p = at(fd.articulatedBias, aj.betaBody);
+        const Eigen::Matrix3d& R = R_GF(aj);
         const double* tauJ = jointTau(aj);
-        const SpatialVector& c = fd.jointBias[j];
+        const SpatialVector& c = at(fd.jointBias, j);
         SpatialVector pa = calcJointForce(aj.motion, R, tauJ);
         // The parent's inertia, or none for ground; d: from the parent's point to the joint centre.
-        const std::size_t parent = static_cast<std::size_t>(aj.alphaBody == kGroundBody ? 0 : aj.alphaBody);
-        Matrix6d* parentInertia = aj.alphaBody == kGroundBody ? nullptr : &fd.articulatedInertia[parent];
-        const Eigen::Vector3d d = parentInertia ? Eigen::Vector3d(fd.jointPoint[j] - fd.jointPoint[parent])
+        const int parent = aj.alphaBody == kGroundBody ? 0 : aj.alphaBody;
+        Matrix6d* parentInertia = aj.alphaBody == kGroundBody ? nullptr : &at(fd.articulatedInertia, parent);
+        const Eigen::Vector3d d = parentInertia ? Eigen::Vector3d(at(fd.jointPoint, j) - at(fd.jointPoint, parent))
                                                 : Eigen::Vector3d::Zero();
         switch (aj.motion) {
             case Motion::Ball: {
                 // S = [R; 0]: U D^-1 U^T = I[:, 0:3] A^-1 I[0:3, :], so Ia = [[0, 0], [0, K]] with K the Schur
                 // complement C - B^T A^-1 B, and pa = [R tau; ...]: 3 x 3 blocks only.
                 const Eigen::Matrix3d B = I.topRightCorner<3, 3>();
-                const Eigen::Matrix3d& Ainv = fd.rotationalInverse[j] = I.topLeftCorner<3, 3>().inverse();
+                const Eigen::Matrix3d& Ainv = at(fd.rotationalInverse, j) = I.topLeftCorner<3, 3>().inverse();
                 const Eigen::Matrix3d BtAinv = B.transpose() * Ainv;
                 // Kept exactly symmetric: the roundoff asymmetry of B^T A^-1 B grows geometrically along
                 // chains of ball joints (1e-8 relative after 40 links, NaN after 127).
@@ -288,25 +315,24 @@ struct Evaluation {
             case Motion::Free: break;  // S invertible: Ia = 0 and pa = the joint force
             case Motion::Weld: break;  // (never: welded links share a body)
         }
-        if (parentInertia) fd.articulatedBias[parent] += shiftForce(pa, -d);
+        if (parentInertia) at(fd.articulatedBias, parent) += shiftForce(pa, -d);
     }
 
     // The child's acceleration from its parent's, a = a_parent + c + S udot with udot = D^-1 (tau - S^T p -
     // U^T (a_parent + c)) (RBDA Table 7.1, third pass), and the joint's udot.
-    void absorbAcceleration(std::size_t j) const {
-        const AssemblyJoint& aj = schedule.getJoints()[j];
-        const std::size_t child = static_cast<std::size_t>(aj.betaBody);
-        const Matrix6d& I = fd.articulatedInertia[child];
-        const SpatialVector& p = fd.articulatedBias[child];
-        const Eigen::Matrix3d& R = data.R_GF[static_cast<std::size_t>(aj.index)];
+    void absorbAcceleration(int j) const {
+        const AssemblyJoint& aj = joint(j);
+        const Matrix6d& I = at(fd.articulatedInertia, aj.betaBody);
+        const SpatialVector& p = at(fd.articulatedBias, aj.betaBody);
+        const Eigen::Matrix3d& R = R_GF(aj);
         const double* tauJ = jointTau(aj);
-        const SpatialVector base = motionAt(fd.bodyAcceleration, aj.alphaBody, fd.jointPoint[j]) + fd.jointBias[j];
+        const SpatialVector base = motionAt(fd.bodyAcceleration, aj.alphaBody, at(fd.jointPoint, j)) + at(fd.jointBias, j);
         SpatialVector a = base;
         switch (aj.motion) {
             case Motion::Ball:
                 // The moment row of I a + p = [R tau; f] gives the angular part; the linear part is the parent's.
-                a.head<3>() = fd.rotationalInverse[j] * (R * Eigen::Map<const Eigen::Vector3d>(tauJ) - p.head<3>() -
-                                                         I.topRightCorner<3, 3>() * a.tail<3>());
+                a.head<3>() = at(fd.rotationalInverse, j) * (R * Eigen::Map<const Eigen::Vector3d>(tauJ) - p.head<3>() -
+                                                             I.topRightCorner<3, 3>() * a.tail<3>());
                 break;
             case Motion::Pin: {
                 const Eigen::Vector3d z = R.col(2);
@@ -317,80 +343,81 @@ struct Evaluation {
             case Motion::Free: a = I.llt().solve(calcJointForce(aj.motion, R, tauJ) - p); break;
             case Motion::Weld: break;
         }
-        fd.bodyAcceleration[child] = a;
-        extractJointAcceleration(aj.motion, R, a - base, fd.udot.data() + model.getJoint(aj.index).uStart);
+        at(fd.bodyAcceleration, aj.betaBody) = a;
+        extractJointAcceleration(aj.motion, R, a - base, jointUdot(aj));
     }
 
     // AbsorbSubassembly: the child's subassembly has one handle, the joint's beta, with a_beta = W f + b.
     // Through the joint the force on it is f = w + T lambda with T^T (a_beta - a_parent - c) = 0, so
     // f = Y a_parent + g with Y and g as in a join (docs/closed-chain.md): in ABA's terms Ia = Y and pa = g.
-    void absorbSubassembly(std::size_t o) const {
-        const AssemblyOperation& op = schedule.getOperations()[o];
-        const std::size_t j = static_cast<std::size_t>(op.joint);
-        const AssemblyJoint& aj = schedule.getJoints()[j];
-        const Matrix6d& W = fd.Phi[static_cast<std::size_t>(op.first)][0];
-        const SpatialVector& b = fd.b[static_cast<std::size_t>(op.first)][0];
-        const Eigen::Matrix3d& R = data.R_GF[static_cast<std::size_t>(aj.index)];
+    void absorbSubassembly(int o) const {
+        const AssemblyOperation& op = operation(o);
+        const AssemblyJoint& aj = joint(op.joint);
+        const HandleEquations child = handleEquations(op.first);
+        const Matrix6d& W = child.Phi(0, 0);
+        const Eigen::Matrix3d& R = R_GF(aj);
         const SpatialVector force = calcJointForce(aj.motion, R, jointTau(aj));
         switch (aj.motion) {
-            case Motion::Ball: setJointTerms<3>(o, ballBasis(), calcJointCompliance<3>(ballBasis(), W), W, force, b); break;
+            case Motion::Ball:
+                setJointTerms<3>(o, ballBasis(), calcJointCompliance<3>(ballBasis(), W), W, force, child.b(0));
+                break;
             case Motion::Pin: {
                 const Eigen::Matrix<double, 6, 5> T = pinBasis(R);
-                setJointTerms<5>(o, T, calcJointCompliance<5>(T, W), W, force, b);
+                setJointTerms<5>(o, T, calcJointCompliance<5>(T, W), W, force, child.b(0));
                 break;
             }
             case Motion::Free:
-                setJointTerms<0>(o, Eigen::Matrix<double, 6, 0>(), Eigen::Matrix<double, 0, 0>(), W, force, b);
+                setJointTerms<0>(o, Eigen::Matrix<double, 6, 0>(), Eigen::Matrix<double, 0, 0>(), W, force, child.b(0));
                 break;
             case Motion::Weld: break;
         }
         if (aj.alphaBody == kGroundBody) return;
-        const std::size_t parent = static_cast<std::size_t>(aj.alphaBody);
-        const Eigen::Vector3d d = fd.jointPoint[j] - fd.jointPoint[parent];
+        const int parent = aj.alphaBody;
+        const Eigen::Vector3d d = at(fd.jointPoint, op.joint) - at(fd.jointPoint, parent);
+        const Matrix6d& Y = at(fd.Y, o);
         // Exactly symmetric, as every articulated inertia is kept (roundoff asymmetry grows along chains).
-        addShiftedInertia(fd.articulatedInertia[parent], 0.5 * (fd.Y[o] + fd.Y[o].transpose()), d);
-        fd.articulatedBias[parent] += shiftForce(fd.g[o], -d);
+        addShiftedInertia(at(fd.articulatedInertia, parent), 0.5 * (Y + Y.transpose()), d);
+        at(fd.articulatedBias, parent) += shiftForce(at(fd.g, o), -d);
     }
 
     // The force through the joint once the parent's acceleration is known: f = Y a_parent + g.
-    void absorbSubassemblyForce(std::size_t o) const {
-        const std::size_t j = static_cast<std::size_t>(schedule.getOperations()[o].joint);
-        const AssemblyJoint& aj = schedule.getJoints()[j];
-        const SpatialVector f = fd.Y[o] * motionAt(fd.bodyAcceleration, aj.alphaBody, fd.jointPoint[j]) + fd.g[o];
-        fd.handleForce[2 * j + 1] = f;
-        fd.handleForce[2 * j] = -f;
+    void absorbSubassemblyForce(int o) const {
+        const int j = operation(o).joint;
+        const SpatialVector f =
+            at(fd.Y, o) * motionAt(fd.bodyAcceleration, joint(j).alphaBody, at(fd.jointPoint, j)) + at(fd.g, o);
+        betaForce(j) = f;
+        alphaForce(j) = -f;
     }
-
-    const double* jointTau(const AssemblyJoint& aj) const { return tau.data() + model.getJoint(aj.index).uStart; }
 
     // A skeleton body's leaf (docs/closed-chain.md, "Leaves"): with G = I^-1 about the body's point o,
     // Phi_hk = M(r_h - o) G M(r_k - o)^T and b_h = -M(r_h - o) G p. With M(r_h - o) G = [[G11, G12], [P_h,
     // Q_h]], P_h = G21 - [d_h]x G11 and Q_h = G22 - [d_h]x G12: Phi_hk = [[G11, P_k^T], [P_h, P_h [d_k]x + Q_h]].
-    void leaf(std::size_t o) const {
-        const int body = schedule.getOperations()[o].first;
-        const std::size_t bb = static_cast<std::size_t>(body);
-        const Matrix6d& G = fd.inverseInertia[bb] = invertInertia(fd.articulatedInertia[bb]);
-        const SpatialVector a0 = -G * fd.articulatedBias[bb];
+    void leaf(int o) const {
+        const int body = operation(o).first;
+        const Matrix6d& G = at(fd.inverseInertia, body) = invertInertia(at(fd.articulatedInertia, body));
+        const SpatialVector a0 = -G * at(fd.articulatedBias, body);
         const std::vector<int>& handles = schedule.getHandles(body);
-        const std::size_t h = handles.size();
-        std::vector<Matrix6d>& PQ = fd.scratchU[o];
-        for (std::size_t k = 0; k < h; ++k) {
-            const Eigen::Vector3d d = pointOfHandle(handles[k]) - fd.jointPoint[bb];
+        const HandleEquations leafEquations = handleEquations(body);  // the body's leaf subassembly
+        const int h = leafEquations.numHandles;
+        std::vector<Matrix6d>& PQ = at(fd.scratchU, o);
+        for (int k = 0; k < h; ++k) {
+            const Eigen::Vector3d d = pointOfHandle(at(handles, k)) - at(fd.jointPoint, body);
             const Eigen::Matrix3d D = skew(d);
-            PQ[k].bottomLeftCorner<3, 3>() = G.bottomLeftCorner<3, 3>() - D * G.topLeftCorner<3, 3>();
-            PQ[k].bottomRightCorner<3, 3>() = G.bottomRightCorner<3, 3>() - D * G.topRightCorner<3, 3>();
-            PQ[k].topLeftCorner<3, 3>() = D;  // [d_k]x, kept for the blocks below
-            fd.b[bb][k] = shiftMotion(a0, d);
+            Matrix6d& PQk = at(PQ, k);
+            PQk.bottomLeftCorner<3, 3>() = G.bottomLeftCorner<3, 3>() - D * G.topLeftCorner<3, 3>();
+            PQk.bottomRightCorner<3, 3>() = G.bottomRightCorner<3, 3>() - D * G.topRightCorner<3, 3>();
+            PQk.topLeftCorner<3, 3>() = D;  // [d_k]x, kept for the blocks below
+            leafEquations.b(k) = shiftMotion(a0, d);
         }
-        for (std::size_t k = 0; k < h; ++k) {
-            for (std::size_t i = 0; i <= k; ++i) {
-                Matrix6d& block = fd.Phi[bb][i * h + k];
+        for (int k = 0; k < h; ++k) {
+            for (int i = 0; i <= k; ++i) {
+                Matrix6d& block = leafEquations.Phi(i, k);
                 block.topLeftCorner<3, 3>() = G.topLeftCorner<3, 3>();
-                block.topRightCorner<3, 3>() = PQ[k].bottomLeftCorner<3, 3>().transpose();
-                block.bottomLeftCorner<3, 3>() = PQ[i].bottomLeftCorner<3, 3>();
-                block.bottomRightCorner<3, 3>() =
-                    PQ[i].bottomLeftCorner<3, 3>() * PQ[k].topLeftCorner<3, 3>() + PQ[i].bottomRightCorner<3, 3>();
-                if (i != k) fd.Phi[bb][k * h + i] = block.transpose();
+                block.topRightCorner<3, 3>() = at(PQ, k).bottomLeftCorner<3, 3>().transpose();
+                block.bottomLeftCorner<3, 3>() = at(PQ, i).bottomLeftCorner<3, 3>();
+                block.bottomRightCorner<3, 3>() = at(PQ, i).bottomLeftCorner<3, 3>() * at(PQ, k).topLeftCorner<3, 3>() +
+                                                  at(PQ, i).bottomRightCorner<3, 3>();
+                if (i != k) leafEquations.Phi(k, i) = block.transpose();
             }
         }
     }
@@ -398,9 +425,9 @@ struct Evaluation {
     // Join (docs/closed-chain.md, "Join"): subassemblies A and B through joint J into C. Y = T E T^T has
     // rank K (the joint's constraint directions), so each block update Phi_ha Y Phi_ak is done as
     // (Phi_ha T) E (Phi_ka T)^T: for a ball joint T selects the force rows and the update costs half.
-    void join(std::size_t o) const {
-        const AssemblyJoint& aj = schedule.getJoints()[static_cast<std::size_t>(schedule.getOperations()[o].joint)];
-        const Eigen::Matrix3d& R = data.R_GF[static_cast<std::size_t>(aj.index)];
+    void join(int o) const {
+        const AssemblyJoint& aj = joint(operation(o).joint);
+        const Eigen::Matrix3d& R = R_GF(aj);
         const SpatialVector force = calcJointForce(aj.motion, R, jointTau(aj));
         switch (aj.motion) {
             case Motion::Ball: joinThrough<3>(o, ballBasis(), force); break;
@@ -411,168 +438,145 @@ struct Evaluation {
     }
 
     template <int K>
-    void joinThrough(std::size_t o, const Eigen::Matrix<double, 6, K>& T, const SpatialVector& force) const {
-        const AssemblyOperation& op = schedule.getOperations()[o];
-        const std::vector<Matrix6d>& PA = fd.Phi[static_cast<std::size_t>(op.first)];
-        const std::vector<Matrix6d>& PB = fd.Phi[static_cast<std::size_t>(op.second)];
-        const std::vector<SpatialVector>& bA = fd.b[static_cast<std::size_t>(op.first)];
-        const std::vector<SpatialVector>& bB = fd.b[static_cast<std::size_t>(op.second)];
-        std::vector<Matrix6d>& C = fd.Phi[static_cast<std::size_t>(op.result)];
-        std::vector<SpatialVector>& bC = fd.b[static_cast<std::size_t>(op.result)];
-        const int hA = static_cast<int>(bA.size()), hB = static_cast<int>(bB.size()), hC = static_cast<int>(bC.size());
+    void joinThrough(int o, const Eigen::Matrix<double, 6, K>& T, const SpatialVector& force) const {
+        const AssemblyOperation& op = operation(o);
+        const HandleEquations A = handleEquations(op.first), B = handleEquations(op.second);
+        const HandleEquations C = handleEquations(op.result);
         const int ia = op.alphaPosition, ib = op.betaPosition;
-        auto A = [&](int i, int k) -> const Matrix6d& { return PA[static_cast<std::size_t>(i * hA + k)]; };
-        auto B = [&](int i, int k) -> const Matrix6d& { return PB[static_cast<std::size_t>(i * hB + k)]; };
-        const Matrix6d W = A(ia, ia) + B(ib, ib);
+        const Matrix6d W = A.Phi(ia, ia) + B.Phi(ib, ib);
         Eigen::Matrix<double, K, K> E;
         if constexpr (K > 0) E = calcJointCompliance<K>(T, W);
-        setJointTerms<K>(o, T, E, W, force, bB[static_cast<std::size_t>(ib)] - bA[static_cast<std::size_t>(ia)]);
-        const SpatialVector& g = fd.g[o];
+        setJointTerms<K>(o, T, E, W, force, B.b(ib) - A.b(ia));
+        const SpatialVector& g = at(fd.g, o);
+        // C's handles: A's but alpha, then B's but beta. fromA(c), and the handle in A or B it is.
+        auto fromA = [&](int c) { return c < A.numHandles - 1; };
+        auto source = [&](int c) { return fromA(c) ? skipHandle(c, ia) : skipHandle(c - (A.numHandles - 1), ib); };
 
-        // U_h = Phi_h,joint T (6 x K) and U_h E, for every remaining handle of A and of B.
-        std::vector<Matrix6d>& U = fd.scratchU[o];
-        std::vector<Matrix6d>& UE = fd.scratchUE[o];
-        for (int c = 0; c < hC; ++c) {
-            const bool fromA = c < hA - 1;
-            const int h = fromA ? (c < ia ? c : c + 1) : (c - (hA - 1) < ib ? c - (hA - 1) : c - (hA - 1) + 1);
-            const Matrix6d& P = fromA ? A(h, ia) : B(h, ib);
-            U[static_cast<std::size_t>(c)].leftCols<K>() = timesBasis<K>(P, T);
-            UE[static_cast<std::size_t>(c)].leftCols<K>() = U[static_cast<std::size_t>(c)].leftCols<K>() * E;
-            bC[static_cast<std::size_t>(c)] = fromA ? SpatialVector(bA[static_cast<std::size_t>(h)] - P * g)
-                                                    : SpatialVector(bB[static_cast<std::size_t>(h)] + P * g);
+        // U_c = Phi_h,joint T (6 x K) and U_c E, for every handle c of C (handle h of A or B).
+        std::vector<Matrix6d>& U = at(fd.scratchU, o);
+        std::vector<Matrix6d>& UE = at(fd.scratchUE, o);
+        for (int c = 0; c < C.numHandles; ++c) {
+            const int h = source(c);
+            const Matrix6d& P = fromA(c) ? A.Phi(h, ia) : B.Phi(h, ib);
+            at(U, c).leftCols<K>() = timesBasis<K>(P, T);
+            at(UE, c).leftCols<K>() = at(U, c).leftCols<K>() * E;
+            C.b(c) = fromA(c) ? SpatialVector(A.b(h) - P * g) : SpatialVector(B.b(h) + P * g);
         }
-        for (int c = 0; c < hC; ++c) {
-            const bool cFromA = c < hA - 1;
-            const int h = cFromA ? (c < ia ? c : c + 1) : (c - (hA - 1) < ib ? c - (hA - 1) : c - (hA - 1) + 1);
-            for (int d = c; d < hC; ++d) {
-                const bool dFromA = d < hA - 1;
-                const int k = dFromA ? (d < ia ? d : d + 1) : (d - (hA - 1) < ib ? d - (hA - 1) : d - (hA - 1) + 1);
-                const Matrix6d update = UE[static_cast<std::size_t>(c)].leftCols<K>() *
-                                        U[static_cast<std::size_t>(d)].leftCols<K>().transpose();
+        for (int c = 0; c < C.numHandles; ++c) {
+            const int h = source(c);
+            for (int d = c; d < C.numHandles; ++d) {
+                const int k = source(d);
+                const Matrix6d update = at(UE, c).leftCols<K>() * at(U, d).leftCols<K>().transpose();
                 Matrix6d block;
-                if (cFromA && dFromA) block = A(h, k) - update;
-                else if (!cFromA && !dFromA) block = B(h, k) - update;
+                if (fromA(c) && fromA(d)) block = A.Phi(h, k) - update;
+                else if (!fromA(c) && !fromA(d)) block = B.Phi(h, k) - update;
                 else block = update;  // c in A, d in B (c < d keeps that order)
-                C[static_cast<std::size_t>(c * hC + d)] = block;
-                if (c != d) C[static_cast<std::size_t>(d * hC + c)] = block.transpose();
+                C.Phi(c, d) = block;
+                if (c != d) C.Phi(d, c) = block.transpose();
             }
         }
     }
 
     // Close (docs/closed-chain.md, "Close"): a loop (or the hang) whose two handles are both in A. With
     // Delta_h = Phi_h,beta - Phi_h,alpha, the update Delta_h Y Delta_k^T is done as (Delta_h T) E (Delta_k T)^T.
-    void close(std::size_t o) const {
-        const AssemblyJoint& aj = schedule.getJoints()[static_cast<std::size_t>(schedule.getOperations()[o].joint)];
-        if (aj.kind == AssemblyJoint::Kind::Loop) closeThrough<3>(o, ballBasis());
+    void close(int o) const {
+        if (joint(operation(o).joint).kind == AssemblyJoint::Kind::Loop) closeThrough<3>(o, ballBasis());
         else closeThrough<6>(o, Matrix6d::Identity());
     }
 
     template <int K>
-    void closeThrough(std::size_t o, const Eigen::Matrix<double, 6, K>& T) const {
-        const AssemblyOperation& op = schedule.getOperations()[o];
-        const std::vector<Matrix6d>& PA = fd.Phi[static_cast<std::size_t>(op.first)];
-        const std::vector<SpatialVector>& bA = fd.b[static_cast<std::size_t>(op.first)];
-        std::vector<Matrix6d>& C = fd.Phi[static_cast<std::size_t>(op.result)];
-        std::vector<SpatialVector>& bC = fd.b[static_cast<std::size_t>(op.result)];
-        const int hA = static_cast<int>(bA.size()), hC = static_cast<int>(bC.size());
+    void closeThrough(int o, const Eigen::Matrix<double, 6, K>& T) const {
+        const AssemblyOperation& op = operation(o);
+        const HandleEquations A = handleEquations(op.first), C = handleEquations(op.result);
         const int ia = op.alphaPosition, ib = op.betaPosition;
-        auto A = [&](int i, int k) -> const Matrix6d& { return PA[static_cast<std::size_t>(i * hA + k)]; };
         // The c-th remaining handle of A.
         auto handleAt = [&](int c) { return c + (c >= std::min(ia, ib) ? 1 : 0) + (c + 1 >= std::max(ia, ib) ? 1 : 0); };
-        const Matrix6d W = A(ia, ia) + A(ib, ib) - A(ia, ib) - A(ib, ia);
+        const Matrix6d W = A.Phi(ia, ia) + A.Phi(ib, ib) - A.Phi(ia, ib) - A.Phi(ib, ia);
         const Eigen::Matrix<double, K, K> E =
-            calcClosureCompliance<K>(T, W, fd.operationRedundancy[o], fd.operationConditioning[o]);
-        setJointTerms<K>(o, T, E, W, SpatialVector::Zero(),
-                         bA[static_cast<std::size_t>(ib)] - bA[static_cast<std::size_t>(ia)]);
-        const SpatialVector& g = fd.g[o];
-        std::vector<Matrix6d>& U = fd.scratchU[o];
-        std::vector<Matrix6d>& UE = fd.scratchUE[o];
-        for (int c = 0; c < hC; ++c) {
+            calcClosureCompliance<K>(T, W, at(fd.operationRedundancy, o), at(fd.operationConditioning, o));
+        setJointTerms<K>(o, T, E, W, SpatialVector::Zero(), A.b(ib) - A.b(ia));
+        const SpatialVector& g = at(fd.g, o);
+        std::vector<Matrix6d>& U = at(fd.scratchU, o);
+        std::vector<Matrix6d>& UE = at(fd.scratchUE, o);
+        for (int c = 0; c < C.numHandles; ++c) {
             const int h = handleAt(c);
-            const Matrix6d delta = A(h, ib) - A(h, ia);
-            U[static_cast<std::size_t>(c)].leftCols<K>() = timesBasis<K>(delta, T);
-            UE[static_cast<std::size_t>(c)].leftCols<K>() = U[static_cast<std::size_t>(c)].leftCols<K>() * E;
-            bC[static_cast<std::size_t>(c)] = bA[static_cast<std::size_t>(h)] + delta * g;
+            const Matrix6d delta = A.Phi(h, ib) - A.Phi(h, ia);
+            at(U, c).leftCols<K>() = timesBasis<K>(delta, T);
+            at(UE, c).leftCols<K>() = at(U, c).leftCols<K>() * E;
+            C.b(c) = A.b(h) + delta * g;
         }
-        for (int c = 0; c < hC; ++c) {
-            for (int d = c; d < hC; ++d) {
-                const Matrix6d block = A(handleAt(c), handleAt(d)) - UE[static_cast<std::size_t>(c)].leftCols<K>() *
-                                                                         U[static_cast<std::size_t>(d)].leftCols<K>().transpose();
-                C[static_cast<std::size_t>(c * hC + d)] = block;
-                if (c != d) C[static_cast<std::size_t>(d * hC + c)] = block.transpose();
+        for (int c = 0; c < C.numHandles; ++c) {
+            for (int d = c; d < C.numHandles; ++d) {
+                const Matrix6d block =
+                    A.Phi(handleAt(c), handleAt(d)) - at(UE, c).leftCols<K>() * at(U, d).leftCols<K>().transpose();
+                C.Phi(c, d) = block;
+                if (c != d) C.Phi(d, c) = block.transpose();
             }
         }
     }
 
     // Y = T E T^T and g = (1 - Y W) w - Y (b_beta - b_alpha - c) of operation o.
     template <int K>
-    void setJointTerms(std::size_t o, const Eigen::Matrix<double, 6, K>& T, const Eigen::Matrix<double, K, K>& E,
+    void setJointTerms(int o, const Eigen::Matrix<double, 6, K>& T, const Eigen::Matrix<double, K, K>& E,
                        const Matrix6d& W, const SpatialVector& force, const SpatialVector& bDifference) const {
-        const SpatialVector& c = fd.jointBias[static_cast<std::size_t>(schedule.getOperations()[o].joint)];
-        Matrix6d& Y = fd.Y[o];
+        const SpatialVector& c = at(fd.jointBias, operation(o).joint);
+        Matrix6d& Y = at(fd.Y, o);
         if constexpr (K == 0) Y.setZero();
         else Y = expandFromBasis<K>(T, E);
-        fd.g[o] = force - Y * (W * force + bDifference - c);
+        at(fd.g, o) = force - Y * (W * force + bDifference - c);
     }
 
     // The force through the operation's joint, from the forces on its result's handles.
-    void disassemble(std::size_t o) const {
-        const AssemblyOperation& op = schedule.getOperations()[o];
+    void disassemble(int o) const {
+        const AssemblyOperation& op = operation(o);
         const std::vector<int>& handlesA = schedule.getHandles(op.first);
-        const std::vector<Matrix6d>& PA = fd.Phi[static_cast<std::size_t>(op.first)];
-        const int hA = static_cast<int>(handlesA.size());
+        const HandleEquations A = handleEquations(op.first);
         const int ia = op.alphaPosition, ib = op.betaPosition;
         auto forceOn = [&](const std::vector<int>& handles, int k) -> const SpatialVector& {
-            return fd.handleForce[static_cast<std::size_t>(handles[static_cast<std::size_t>(k)])];
+            return at(fd.handleForce, at(handles, k));
         };
         SpatialVector sum = SpatialVector::Zero();
         if (op.kind == AssemblyOperation::Kind::Join) {
             const std::vector<int>& handlesB = schedule.getHandles(op.second);
-            const std::vector<Matrix6d>& PB = fd.Phi[static_cast<std::size_t>(op.second)];
-            const int hB = static_cast<int>(handlesB.size());
-            for (int k = 0; k < hB; ++k)
-                if (k != ib) sum += PB[static_cast<std::size_t>(ib * hB + k)] * forceOn(handlesB, k);
-            for (int k = 0; k < hA; ++k)
-                if (k != ia) sum -= PA[static_cast<std::size_t>(ia * hA + k)] * forceOn(handlesA, k);
+            const HandleEquations B = handleEquations(op.second);
+            for (int k = 0; k < B.numHandles; ++k)
+                if (k != ib) sum += B.Phi(ib, k) * forceOn(handlesB, k);
+            for (int k = 0; k < A.numHandles; ++k)
+                if (k != ia) sum -= A.Phi(ia, k) * forceOn(handlesA, k);
         } else {
-            for (int k = 0; k < hA; ++k)
-                if (k != ia && k != ib)
-                    sum += (PA[static_cast<std::size_t>(ib * hA + k)] - PA[static_cast<std::size_t>(ia * hA + k)]) *
-                           forceOn(handlesA, k);
+            for (int k = 0; k < A.numHandles; ++k)
+                if (k != ia && k != ib) sum += (A.Phi(ib, k) - A.Phi(ia, k)) * forceOn(handlesA, k);
         }
-        const SpatialVector f = fd.g[o] - fd.Y[o] * sum;
-        fd.handleForce[static_cast<std::size_t>(2 * op.joint + 1)] = f;
-        fd.handleForce[static_cast<std::size_t>(2 * op.joint)] = -f;
+        const SpatialVector f = at(fd.g, o) - at(fd.Y, o) * sum;
+        betaForce(op.joint) = f;
+        alphaForce(op.joint) = -f;
     }
 
     // A skeleton body's acceleration, a = I^-1 (sum of handle forces - p), about its point.
-    void finishLeaf(std::size_t o) const {
-        const int body = schedule.getOperations()[o].first;
-        const std::size_t bb = static_cast<std::size_t>(body);
-        SpatialVector total = -fd.articulatedBias[bb];
+    void finishLeaf(int o) const {
+        const int body = operation(o).first;
+        SpatialVector total = -at(fd.articulatedBias, body);
         for (int h : schedule.getHandles(body))
-            total += shiftForce(fd.handleForce[static_cast<std::size_t>(h)], fd.jointPoint[bb] - pointOfHandle(h));
-        fd.bodyAcceleration[bb] = fd.inverseInertia[bb] * total;
+            total += shiftForce(at(fd.handleForce, h), at(fd.jointPoint, body) - pointOfHandle(h));
+        at(fd.bodyAcceleration, body) = at(fd.inverseInertia, body) * total;
     }
 
     // udot from a_beta - a_alpha - c = S udot about the joint point (absorbed joints have theirs already);
     // closures report their force on beta.
-    void finishJoint(std::size_t j) const {
-        const AssemblyJoint& aj = schedule.getJoints()[j];
+    void finishJoint(int j) const {
+        const AssemblyJoint& aj = joint(j);
         switch (aj.kind) {
             case AssemblyJoint::Kind::Tree: {
-                if (schedule.getTreeJointOperation(static_cast<int>(j)) == AssemblyOperation::Kind::Absorb) break;
-                const Eigen::Vector3d& p = fd.jointPoint[j];
-                extractJointAcceleration(aj.motion, data.R_GF[static_cast<std::size_t>(aj.index)],
+                if (schedule.getTreeJointOperation(j) == AssemblyOperation::Kind::Absorb) break;
+                const Eigen::Vector3d& p = at(fd.jointPoint, j);
+                extractJointAcceleration(aj.motion, R_GF(aj),
                                          motionAt(fd.bodyAcceleration, aj.betaBody, p) -
-                                             motionAt(fd.bodyAcceleration, aj.alphaBody, p) - fd.jointBias[j],
-                                         fd.udot.data() + model.getJoint(aj.index).uStart);
+                                             motionAt(fd.bodyAcceleration, aj.alphaBody, p) - at(fd.jointBias, j),
+                                         jointUdot(aj));
                 break;
             }
-            case AssemblyJoint::Kind::Loop:
-                fd.loopForce[static_cast<std::size_t>(aj.index)] = fd.handleForce[2 * j + 1].tail<3>();
-                break;
-            case AssemblyJoint::Kind::Hang: fd.hangForce = fd.handleForce[2 * j + 1]; break;
+            case AssemblyJoint::Kind::Loop: at(fd.loopForce, aj.index) = betaForce(j).tail<3>(); break;
+            case AssemblyJoint::Kind::Hang: fd.hangForce = betaForce(j); break;
         }
     }
 };
@@ -592,10 +596,10 @@ ForwardDynamicsData::ForwardDynamicsData(const Model& model, const AssemblySched
     rotationalInverse.assign(joints, Eigen::Matrix3d::Zero());
     Phi.resize(static_cast<std::size_t>(schedule.getNumSubassemblies()));
     b.resize(Phi.size());
-    for (std::size_t s = 0; s < Phi.size(); ++s) {
-        const std::size_t h = schedule.getHandles(static_cast<int>(s)).size();
-        Phi[s].assign(h * h, Matrix6d::Zero());
-        b[s].assign(h, SpatialVector::Zero());
+    for (int s = 0; s < schedule.getNumSubassemblies(); ++s) {
+        const std::size_t h = schedule.getHandles(s).size();
+        at(Phi, s).assign(h * h, Matrix6d::Zero());
+        at(b, s).assign(h, SpatialVector::Zero());
     }
     Y.assign(operations, Matrix6d::Zero());
     g.assign(operations, SpatialVector::Zero());
@@ -627,34 +631,32 @@ void runStages(const Evaluation& e, ForEach&& forEach) {
     const std::vector<int>& levels = schedule.getLevelStarts();
     const int numLevels = schedule.getNumLevels();
     using Kind = AssemblyOperation::Kind;
-    forEach(0, numJoints, [&](int j) { e.placeJoint(static_cast<std::size_t>(j)); });
+    forEach(0, numJoints, [&](int j) { e.placeJoint(j); });
     forEach(0, numBodies, [&](int body) { e.prepareBody(body); });
-    forEach(0, numJoints, [&](int j) { e.prepareJoint(static_cast<std::size_t>(j)); });
+    forEach(0, numJoints, [&](int j) { e.prepareJoint(j); });
     for (int level = 0; level < numLevels; ++level)
-        forEach(levels[static_cast<std::size_t>(level)], levels[static_cast<std::size_t>(level) + 1], [&](int o) {
-            const std::size_t op = static_cast<std::size_t>(o);
-            const AssemblyOperation& operation = schedule.getOperations()[op];
+        forEach(at(levels, level), at(levels, level + 1), [&](int o) {
+            const AssemblyOperation& operation = e.operation(o);
             switch (operation.kind) {
-                case Kind::Absorb: e.absorb(static_cast<std::size_t>(operation.joint)); break;
-                case Kind::AbsorbSubassembly: e.absorbSubassembly(op); break;
-                case Kind::Leaf: e.leaf(op); break;
-                case Kind::Join: e.join(op); break;
-                case Kind::Close: e.close(op); break;
+                case Kind::Absorb: e.absorb(operation.joint); break;
+                case Kind::AbsorbSubassembly: e.absorbSubassembly(o); break;
+                case Kind::Leaf: e.leaf(o); break;
+                case Kind::Join: e.join(o); break;
+                case Kind::Close: e.close(o); break;
             }
         });
     for (int level = numLevels - 1; level >= 0; --level)
-        forEach(levels[static_cast<std::size_t>(level)], levels[static_cast<std::size_t>(level) + 1], [&](int o) {
-            const std::size_t op = static_cast<std::size_t>(o);
-            const AssemblyOperation& operation = schedule.getOperations()[op];
+        forEach(at(levels, level), at(levels, level + 1), [&](int o) {
+            const AssemblyOperation& operation = e.operation(o);
             switch (operation.kind) {
-                case Kind::Absorb: e.absorbAcceleration(static_cast<std::size_t>(operation.joint)); break;
-                case Kind::AbsorbSubassembly: e.absorbSubassemblyForce(op); break;
-                case Kind::Leaf: e.finishLeaf(op); break;
+                case Kind::Absorb: e.absorbAcceleration(operation.joint); break;
+                case Kind::AbsorbSubassembly: e.absorbSubassemblyForce(o); break;
+                case Kind::Leaf: e.finishLeaf(o); break;
                 case Kind::Join:
-                case Kind::Close: e.disassemble(op); break;
+                case Kind::Close: e.disassemble(o); break;
             }
         });
-    forEach(0, numJoints, [&](int j) { e.finishJoint(static_cast<std::size_t>(j)); });
+    forEach(0, numJoints, [&](int j) { e.finishJoint(j); });
 }
 
 }  // namespace

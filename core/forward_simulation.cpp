@@ -347,178 +347,245 @@ double calcConstraintViolation(const Model& model, Data& data, const Eigen::Vect
     return worst;
 }
 
-SimulationSummary simulateForwardSinew(const Model& model, const ForwardSimulationOptions& options,
-                                       const std::function<void(const SimulationFrame&)>& onFrame) {
-    const long numReports = checkSimulationOptions(options);
-    int hangLink = -1;
-    if (!options.hangBy.empty()) {
-        hangLink = model.findLinkIndex(options.hangBy);
-        if (hangLink < 0) throw Error("--hang-by: model '" + model.getName() + "' has no link '" + options.hangBy + "'");
-        if (model.getLink(hangLink).isVirtual) throw Error("--hang-by: '" + options.hangBy + "' is a virtual link");
-    }
+namespace {
 
-    SinewSimulator simulator(model, hangLink);
-    Data& data = simulator.updData();
-    const int nq = model.getNumQ(), nu = model.getNumU();
+int findHangLink(const Model& model, const std::string& hangBy) {
+    if (hangBy.empty()) return -1;
+    const int hangLink = model.findLinkIndex(hangBy);
+    if (hangLink < 0) throw Error("--hang-by: model '" + model.getName() + "' has no link '" + hangBy + "'");
+    if (model.getLink(hangLink).isVirtual) throw Error("--hang-by: '" + hangBy + "' is a virtual link");
+    return hangLink;
+}
+
+// T = sum over links of 1/2 (m |v_com|^2 + w^T I_com w); V = -m g . p_com + wire energy. Needs the
+// kinematics and wire paths in `data`.
+void calcMechanicalEnergy(const Model& model, const Data& data, double& kinetic, double& potential) {
+    kinetic = 0;
+    potential = calcWirePotentialEnergy(model, data);
+    for (int i = 0; i < model.getNumLinks(); ++i) {
+        const Link& link = model.getLink(i);
+        const std::size_t b = static_cast<std::size_t>(i);
+        const Eigen::Vector3d r_G = data.R_GB[b] * link.com_B;
+        const Eigen::Vector3d v_com = data.v_GB[b] + data.w_GB[b].cross(r_G);
+        const Eigen::Vector3d w_B = data.R_GB[b].transpose() * data.w_GB[b];
+        kinetic += 0.5 * (link.mass * v_com.squaredNorm() + w_B.dot(link.inertia_Bcom * w_B));
+        potential -= link.mass * model.getGravity().dot(data.p_GB[b] + r_G);
+    }
+}
+
+// One simulateForwardSinew: the state y = [q; u] at time t, the integrator's step, the frames it reports
+// and the summary they add up to.
+class SinewRun {
+public:
+    SinewRun(const Model& model, const ForwardSimulationOptions& options, int hangLink,
+             const std::function<void(const SimulationFrame&)>& onFrame)
+        : model_(model),
+          options_(options),
+          hangLink_(hangLink),
+          onFrame_(onFrame),
+          nq_(model.getNumQ()),
+          nu_(model.getNumU()),
+          simulator_(model, hangLink),
+          data_(simulator_.updData()),
+          y_(nq_ + nu_),
+          ydot_(nq_ + nu_),
+          tautStart_(static_cast<std::size_t>(model.getNumWires())) {
+        frame_.q.resize(nq_);
+        frame_.u.resize(nu_);
+        frame_.tensions.resize(model.getNumWires());
+    }
 
     // The initial state: the default pose, where the loops must already be closed (this engine does not
     // assemble them) and where the hung link is welded; speeds projected onto the velocity constraints.
-    Eigen::VectorXd y(nq + nu), ydot(nq + nu);
-    y.head(nq) = model.getDefaultQ();
-    calcPositionKinematics(model, data, model.getDefaultQ());
-    const Eigen::Vector3d p_GH = hangLink >= 0 ? data.p_GB[static_cast<std::size_t>(hangLink)] : Eigen::Vector3d::Zero();
-    const double initialGap = calcConstraintViolation(model, data, model.getDefaultQ(), hangLink, p_GH);
-    if (initialGap > options.accuracy)
-        throw Error("model '" + model.getName() + "': the loops are open by up to " + std::to_string(initialGap) +
-                    " m at the default pose; sinew's engine does not assemble loops (Simbody's does)");
-    y.tail(nu).setZero();
-    if (options.initialSpeeds.size() > 0) {
-        if (options.initialSpeeds.size() != nu) throw Error("initial speeds need " + std::to_string(nu) + " values");
-        const Eigen::MatrixXd G = calcVelocityConstraintMatrix(model, data, hangLink);
-        // The nearest u (least squares) with G u = 0: subtract the minimum-norm du with G du = G u0.
-        y.tail(nu) = options.initialSpeeds;
-        if (G.rows() > 0) y.tail(nu) -= G.completeOrthogonalDecomposition().solve(G * options.initialSpeeds);
+    void setInitialState() {
+        y_.head(nq_) = model_.getDefaultQ();
+        calcPositionKinematics(model_, data_, model_.getDefaultQ());
+        p_GH_ = hangLink_ >= 0 ? data_.p_GB[static_cast<std::size_t>(hangLink_)] : Eigen::Vector3d::Zero();
+        const double initialGap = calcConstraintViolation(model_, data_, model_.getDefaultQ(), hangLink_, p_GH_);
+        if (initialGap > options_.accuracy)
+            throw Error("model '" + model_.getName() + "': the loops are open by up to " + std::to_string(initialGap) +
+                        " m at the default pose; sinew's engine does not assemble loops (Simbody's does)");
+        y_.tail(nu_).setZero();
+        if (options_.initialSpeeds.size() > 0) {
+            if (options_.initialSpeeds.size() != nu_) throw Error("initial speeds need " + std::to_string(nu_) + " values");
+            const Eigen::MatrixXd G = calcVelocityConstraintMatrix(model_, data_, hangLink_);
+            // The nearest u (least squares) with G u = 0: subtract the minimum-norm du with G du = G u0.
+            y_.tail(nu_) = options_.initialSpeeds;
+            if (G.rows() > 0) y_.tail(nu_) -= G.completeOrthogonalDecomposition().solve(G * options_.initialSpeeds);
+        }
     }
 
-    SimulationSummary summary;
-    SimulationFrame frame;
-    frame.q.resize(nq);
-    frame.u.resize(nu);
-    frame.tensions.resize(model.getNumWires());
-    auto report = [&](double t) {
-        frame.time = t;
-        frame.q = y.head(nq);
-        frame.u = y.tail(nu);
-        summary.maxConstraintViolation =
-            std::max(summary.maxConstraintViolation, calcConstraintViolation(model, data, frame.q, hangLink, p_GH));
-        simulator.calcKinematicsAndTensions(t, y);
-        frame.tensions = simulator.getTensions();
-        summary.maxVirtualLinkResidual =
-            recordVirtualLinkResidual(summary.maxVirtualLinkResidual, simulator.getVirtualLinkStatus(), t);
-        // T = sum over links of 1/2 (m |v_com|^2 + w^T I_com w); V = -m g . p_com + wire energy.
-        double kinetic = 0, potential = calcWirePotentialEnergy(model, data);
-        for (int i = 0; i < model.getNumLinks(); ++i) {
-            const Link& link = model.getLink(i);
-            const std::size_t b = static_cast<std::size_t>(i);
-            const Eigen::Vector3d r_G = data.R_GB[b] * link.com_B;
-            const Eigen::Vector3d v_com = data.v_GB[b] + data.w_GB[b].cross(r_G);
-            const Eigen::Vector3d w_B = data.R_GB[b].transpose() * data.w_GB[b];
-            kinetic += 0.5 * (link.mass * v_com.squaredNorm() + w_B.dot(link.inertia_Bcom * w_B));
-            potential -= link.mass * model.getGravity().dot(data.p_GB[b] + r_G);
-        }
-        frame.kineticEnergy = kinetic;
-        frame.potentialEnergy = potential;
-        const double energy = kinetic + potential;
-        if (summary.frames == 0) summary.initialEnergy = energy;
-        if (!std::isfinite(energy) || !frame.q.allFinite())
+    // ydot, the pulling wires and the first step at t = 0, and its frame.
+    void start() {
+        simulator_.calcStateDerivative(t_, y_, ydot_);
+        simulator_.storeVirtualLinks(y_);
+        simulator_.captureTautSet(tautStart_);
+        h_ = options_.integrator == Integrator::Adaptive
+                 ? simulator_.calcInitialStep(t_, y_, ydot_, options_.accuracy, options_.reportInterval)
+                 : options_.fixedStep;
+        report(t_);
+    }
+
+    // Integrates to tReport and reports the frame there.
+    void advanceTo(double tReport) {
+        if (options_.integrator == Integrator::RungeKutta4Fixed) advanceFixed(tReport);
+        else advanceAdaptive(tReport);
+        t_ = tReport;
+        report(t_);
+    }
+
+    SimulationSummary& getSummary() { return summary_; }
+
+private:
+    void report(double t) {
+        frame_.time = t;
+        frame_.q = y_.head(nq_);
+        frame_.u = y_.tail(nu_);
+        summary_.maxConstraintViolation = std::max(summary_.maxConstraintViolation,
+                                                   calcConstraintViolation(model_, data_, frame_.q, hangLink_, p_GH_));
+        simulator_.calcKinematicsAndTensions(t, y_);
+        frame_.tensions = simulator_.getTensions();
+        summary_.maxVirtualLinkResidual =
+            recordVirtualLinkResidual(summary_.maxVirtualLinkResidual, simulator_.getVirtualLinkStatus(), t);
+        calcMechanicalEnergy(model_, data_, frame_.kineticEnergy, frame_.potentialEnergy);
+        const double energy = frame_.kineticEnergy + frame_.potentialEnergy;
+        if (summary_.frames == 0) summary_.initialEnergy = energy;
+        if (!std::isfinite(energy) || !frame_.q.allFinite())
             throw Error("simulation diverged at t = " + formatTime(t) + " s (non-finite state)");
-        summary.maxEnergyDrift = std::max(summary.maxEnergyDrift, std::abs(energy - summary.initialEnergy));
-        summary.peakKineticEnergy = std::max(summary.peakKineticEnergy, kinetic);
-        ++summary.frames;
-        onFrame(frame);
-    };
-
-    const auto start = std::chrono::steady_clock::now();
-    double t = 0;
-    simulator.calcStateDerivative(t, y, ydot);
-    simulator.storeVirtualLinks(y);
-    std::vector<char> tautStart(static_cast<std::size_t>(model.getNumWires()));  // pulling wires at (t, y)
-    simulator.captureTautSet(tautStart);
-    double h = options.integrator == Integrator::Adaptive
-                   ? simulator.calcInitialStep(t, y, ydot, options.accuracy, options.reportInterval)
-                   : options.fixedStep;
-    report(t);
-    long attempts = 0;  // integrator steps tried, against options.maxSteps
-    auto spend = [&](double tNow, long steps) {
-        attempts += steps;
-        if (attempts > options.maxSteps)
-            throw Error("simulation stopped at t = " + formatTime(tNow) + " s: the step budget (--max-steps " +
-                        std::to_string(options.maxSteps) + ") ran out; the model may be too stiff (check its "
-                        "stiffnesses, damping and masses) or --max-steps too small");
-    };
-    for (long i = 1; i <= numReports; ++i) {
-        const double tReport = getReportTime(options, i);
-        if (options.integrator == Integrator::RungeKutta4Fixed) {
-            // Equal steps no longer than fixedStep, ending on the report time.
-            const double span = tReport - t;
-            const double steps = std::ceil(span / options.fixedStep - 1e-9);
-            spend(t, static_cast<long>(std::min(steps, 1e18)));
-            const int n = std::max(1, static_cast<int>(steps));
-            for (int k = 0; k < n; ++k) {
-                const double tk = t + span * k / n;
-                simulator.stepRungeKutta4(tk, span / n, y, ydot);
-            }
-            summary.steps += n;
-        } else {
-            // Error control with safety factor 0.9 and growth limited to [0.2, 5] (after a rejection, <= 1).
-            constexpr double kSafety = 0.9, kMinFactor = 0.2, kMaxFactor = 5;
-            bool lastRejected = false;
-            while (t < tReport) {
-                const double remaining = tReport - t;
-                if (remaining <= 10 * kTimeResolution * std::max(1.0, tReport)) {  // a sliver left by a wire switch
-                    simulator.nudge(tReport, remaining, y, ydot);
-                    simulator.captureTautSet(tautStart);
-                    t = tReport;
-                    break;
-                }
-                // Land on the report time without leaving a sliver: the whole remainder, or half of it.
-                const bool toReport = remaining <= h;
-                const double hStep = toReport ? remaining : std::min(h, remaining <= 2 * h ? remaining / 2 : h);
-                if (hStep < std::max(options.minStep, kTimeResolution * std::max(1.0, t)))
-                    throw Error("simulation stopped at t = " + formatTime(t) + " s: the step size collapsed to " +
-                                formatTime(hStep) + " s (below --min-step " + formatTime(options.minStep) +
-                                " s); the model may be too stiff or diverging (check its stiffnesses, damping, "
-                                "masses and wire points)");
-                spend(t, 1);
-                const double err = simulator.tryDormandPrince(t, hStep, y, ydot, options.accuracy);
-                if (!std::isfinite(err))
-                    throw Error("simulation diverged at t = " + formatTime(t) + " s (non-finite state)");
-                double factor = err > 0 ? kSafety * std::pow(err, -1.0 / 5) : kMaxFactor;
-                factor = std::clamp(factor, kMinFactor, lastRejected ? 1.0 : kMaxFactor);
-                if (err <= 1 && !simulator.isTautSet(tautStart) && hStep > 1e3 * kTimeResolution * std::max(1.0, t)) {
-                    // A wire went slack or taut inside the step: a kink (or, with damping, a jump) in the forces
-                    // that costs Runge-Kutta its order and fools its error estimate. Step to just before the
-                    // switch with stages that all see the old forces, then across its bracket by Euler.
-                    // The bracket is kept wider than roundoff in t, so that crossing it always makes progress.
-                    const double resolution = 4 * kTimeResolution * std::max(1.0, t);
-                    double lo = 0, hi = 1;
-                    simulator.prepareDenseOutput(hStep, y, ydot);
-                    simulator.locateWireSwitch(t, hStep, y, tautStart, std::max(kSwitchWidth * hStep, resolution), lo,
-                                               hi);
-                    if (lo * hStep < resolution) lo = 0;
-                    if (lo > 0) {
-                        const double errLo = simulator.tryDormandPrince(t, lo * hStep, y, ydot, options.accuracy);
-                        if (!(errLo <= 1)) {  // rare: retry shorter, as for any rejected step
-                            h = lo * hStep * std::clamp(kSafety * std::pow(errLo, -1.0 / 5), kMinFactor, 1.0);
-                            lastRejected = true;
-                            continue;
-                        }
-                        simulator.acceptDormandPrince(y, ydot);
-                        ++summary.steps;
-                    }
-                    const double tHi = hi == 1 && toReport ? tReport : t + hi * hStep;
-                    simulator.nudge(tHi, (hi - lo) * hStep, y, ydot);
-                    simulator.captureTautSet(tautStart);
-                    t = tHi;
-                    ++summary.wireSwitches;
-                    lastRejected = false;
-                } else if (err <= 1) {
-                    simulator.acceptDormandPrince(y, ydot);
-                    simulator.captureTautSet(tautStart);
-                    t = toReport ? tReport : t + hStep;
-                    ++summary.steps;
-                    // A step shortened to reach the report time says little about the next one.
-                    h = hStep < h && factor >= 1 ? std::max(h, hStep * factor) : hStep * factor;
-                    lastRejected = false;
-                } else {
-                    h = hStep * factor;
-                    lastRejected = true;
-                }
-            }
-        }
-        t = tReport;
-        report(t);
+        summary_.maxEnergyDrift = std::max(summary_.maxEnergyDrift, std::abs(energy - summary_.initialEnergy));
+        summary_.peakKineticEnergy = std::max(summary_.peakKineticEnergy, frame_.kineticEnergy);
+        ++summary_.frames;
+        onFrame_(frame_);
     }
+
+    // Counts integrator steps tried against options.maxSteps.
+    void spend(double tNow, long steps) {
+        attempts_ += steps;
+        if (attempts_ > options_.maxSteps)
+            throw Error("simulation stopped at t = " + formatTime(tNow) + " s: the step budget (--max-steps " +
+                        std::to_string(options_.maxSteps) + ") ran out; the model may be too stiff (check its "
+                        "stiffnesses, damping and masses) or --max-steps too small");
+    }
+
+    // Equal RK4 steps no longer than fixedStep, ending on the report time.
+    void advanceFixed(double tReport) {
+        const double span = tReport - t_;
+        const double steps = std::ceil(span / options_.fixedStep - 1e-9);
+        spend(t_, static_cast<long>(std::min(steps, 1e18)));
+        const int n = std::max(1, static_cast<int>(steps));
+        for (int k = 0; k < n; ++k) {
+            const double tk = t_ + span * k / n;
+            simulator_.stepRungeKutta4(tk, span / n, y_, ydot_);
+        }
+        summary_.steps += n;
+    }
+
+    // Dormand-Prince steps under error control to the report time.
+    void advanceAdaptive(double tReport) {
+        lastRejected_ = false;
+        while (t_ < tReport) {
+            const double remaining = tReport - t_;
+            if (remaining <= 10 * kTimeResolution * std::max(1.0, tReport)) {  // a sliver left by a wire switch
+                simulator_.nudge(tReport, remaining, y_, ydot_);
+                simulator_.captureTautSet(tautStart_);
+                t_ = tReport;
+                break;
+            }
+            // Land on the report time without leaving a sliver: the whole remainder, or half of it.
+            const bool toReport = remaining <= h_;
+            const double hStep = toReport ? remaining : std::min(h_, remaining <= 2 * h_ ? remaining / 2 : h_);
+            if (hStep < std::max(options_.minStep, kTimeResolution * std::max(1.0, t_)))
+                throw Error("simulation stopped at t = " + formatTime(t_) + " s: the step size collapsed to " +
+                            formatTime(hStep) + " s (below --min-step " + formatTime(options_.minStep) +
+                            " s); the model may be too stiff or diverging (check its stiffnesses, damping, "
+                            "masses and wire points)");
+            spend(t_, 1);
+            tryAdaptiveStep(hStep, toReport, tReport);
+        }
+    }
+
+    // One trial step of size hStep (to tReport if toReport): accepted, rejected, or split at a wire switch
+    // inside it. Error control with safety factor 0.9 and growth limited to [0.2, 5] (after a rejection, <= 1).
+    void tryAdaptiveStep(double hStep, bool toReport, double tReport) {
+        const double err = simulator_.tryDormandPrince(t_, hStep, y_, ydot_, options_.accuracy);
+        if (!std::isfinite(err)) throw Error("simulation diverged at t = " + formatTime(t_) + " s (non-finite state)");
+        double factor = err > 0 ? kSafety * std::pow(err, -1.0 / 5) : kMaxFactor;
+        factor = std::clamp(factor, kMinFactor, lastRejected_ ? 1.0 : kMaxFactor);
+        if (err <= 1 && !simulator_.isTautSet(tautStart_) && hStep > 1e3 * kTimeResolution * std::max(1.0, t_)) {
+            crossWireSwitch(hStep, toReport, tReport);
+        } else if (err <= 1) {
+            simulator_.acceptDormandPrince(y_, ydot_);
+            simulator_.captureTautSet(tautStart_);
+            t_ = toReport ? tReport : t_ + hStep;
+            ++summary_.steps;
+            // A step shortened to reach the report time says little about the next one.
+            h_ = hStep < h_ && factor >= 1 ? std::max(h_, hStep * factor) : hStep * factor;
+            lastRejected_ = false;
+        } else {
+            h_ = hStep * factor;
+            lastRejected_ = true;
+        }
+    }
+
+    // A wire went slack or taut inside the step: a kink (or, with damping, a jump) in the forces that costs
+    // Runge-Kutta its order and fools its error estimate. Step to just before the switch with stages that
+    // all see the old forces, then across its bracket by Euler. The bracket is kept wider than roundoff in
+    // t, so that crossing it always makes progress.
+    void crossWireSwitch(double hStep, bool toReport, double tReport) {
+        const double resolution = 4 * kTimeResolution * std::max(1.0, t_);
+        double lo = 0, hi = 1;
+        simulator_.prepareDenseOutput(hStep, y_, ydot_);
+        simulator_.locateWireSwitch(t_, hStep, y_, tautStart_, std::max(kSwitchWidth * hStep, resolution), lo, hi);
+        if (lo * hStep < resolution) lo = 0;
+        if (lo > 0) {
+            const double errLo = simulator_.tryDormandPrince(t_, lo * hStep, y_, ydot_, options_.accuracy);
+            if (!(errLo <= 1)) {  // rare: retry shorter, as for any rejected step
+                h_ = lo * hStep * std::clamp(kSafety * std::pow(errLo, -1.0 / 5), kMinFactor, 1.0);
+                lastRejected_ = true;
+                return;
+            }
+            simulator_.acceptDormandPrince(y_, ydot_);
+            ++summary_.steps;
+        }
+        const double tHi = hi == 1 && toReport ? tReport : t_ + hi * hStep;
+        simulator_.nudge(tHi, (hi - lo) * hStep, y_, ydot_);
+        simulator_.captureTautSet(tautStart_);
+        t_ = tHi;
+        ++summary_.wireSwitches;
+        lastRejected_ = false;
+    }
+
+    static constexpr double kSafety = 0.9, kMinFactor = 0.2, kMaxFactor = 5;
+
+    const Model& model_;
+    const ForwardSimulationOptions& options_;
+    const int hangLink_;
+    const std::function<void(const SimulationFrame&)>& onFrame_;
+    const int nq_, nu_;
+    SinewSimulator simulator_;
+    Data& data_;
+    Eigen::Vector3d p_GH_ = Eigen::Vector3d::Zero();  // m, where the hung link's origin is held
+    Eigen::VectorXd y_, ydot_;                        // (nq + nu) at t_
+    double t_ = 0;
+    double h_ = 0;                     // the next step to try
+    std::vector<char> tautStart_;      // pulling wires at (t_, y_)
+    long attempts_ = 0;                // integrator steps tried, against options.maxSteps
+    bool lastRejected_ = false;        // the last trial step in this report interval was rejected
+    SimulationFrame frame_;
+    SimulationSummary summary_;
+};
+
+}  // namespace
+
+SimulationSummary simulateForwardSinew(const Model& model, const ForwardSimulationOptions& options,
+                                       const std::function<void(const SimulationFrame&)>& onFrame) {
+    const long numReports = checkSimulationOptions(options);
+    SinewRun run(model, options, findHangLink(model, options.hangBy), onFrame);
+    run.setInitialState();
+    const auto start = std::chrono::steady_clock::now();
+    run.start();
+    for (long i = 1; i <= numReports; ++i) run.advanceTo(getReportTime(options, i));
+    SimulationSummary& summary = run.getSummary();
     summary.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return summary;
 }

@@ -66,13 +66,13 @@ void calcInverseDynamics(const Model& model, Data& data, const Eigen::VectorXd& 
         const Eigen::Vector3d f = link.mass * (a_c - g);
         SpatialVector F;
         F << I_c * data.alpha_GB[b] + w_B.cross(I_c * w_B) + r_c.cross(f), f;
-        data.F_G[b] = F - appliedLinkForces[b];
+        data.scratchF_G[b] = F - appliedLinkForces[b];
     }
     // Tip to base: each joint carries its subtree's net force, projected onto its motion subspace.
     for (int i = model.getNumLinks() - 1; i >= 0; --i) {
         const Joint& joint = model.getJoint(i);
         const std::size_t b = static_cast<std::size_t>(i);
-        projectOntoJoint(joint, data, i, data.p_GB[b], data.F_G[b], tau.data() + joint.uStart);
+        projectOntoJoint(joint, data, i, data.p_GB[b], data.scratchF_G[b], tau.data() + joint.uStart);
         addToParent(model, data, i);
     }
 }

@@ -114,7 +114,7 @@ void calcGeneralizedForcesFromLinkForces(const Model& model, Data& data, Eigen::
     for (int i = model.getNumLinks() - 1; i >= 0; --i) {
         const Joint& joint = model.getJoint(i);
         const std::size_t b = static_cast<std::size_t>(i);
-        projectOntoJoint(joint, data, i, data.p_GB[b], data.F_G[b], tau.data() + joint.uStart);
+        projectOntoJoint(joint, data, i, data.p_GB[b], data.scratchF_G[b], tau.data() + joint.uStart);
         addToParent(model, data, i);
     }
 }
@@ -123,7 +123,7 @@ void addToParent(const Model& model, Data& data, int link) {
     const int parent = model.getJoint(link).parent;
     if (parent == kGround) return;
     const std::size_t b = static_cast<std::size_t>(link), p = static_cast<std::size_t>(parent);
-    data.F_G[p] += shiftForce(data.F_G[b], data.p_GB[p] - data.p_GB[b]);
+    data.scratchF_G[p] += shiftForce(data.scratchF_G[b], data.p_GB[p] - data.p_GB[b]);
 }
 
 Eigen::VectorXd integrateCoordinates(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& u,

@@ -300,92 +300,158 @@ void ModelBuilder::setGravity(const Eigen::Vector3d& gravity, std::string where)
     gravityWhere_ = std::move(where);
 }
 
-Model ModelBuilder::build() const {
-    Model model;
-    model.name_ = name_;
-    requireFinite(gravityWhere_, "gravity", gravity_);
-    model.gravity_ = gravity_;
+// build()'s state between its stages: the model so far and the name tables later stages resolve against.
+// Each stage checks or compiles one kind of element, in the order they refer to each other (as MuJoCo's
+// mjCModel compiles its bodies, joints, tendons, ... in turn).
+struct ModelBuilder::Compilation {
+    explicit Compilation(const ModelBuilder& builder) : specs(builder) {}
 
-    // Names: links and virtual links share one namespace; "ground" is reserved.
-    std::map<std::string, std::string> linkWhere;  // name -> where
+    void claimLinkNames();
+    void checkJoints();
+    void checkLinks();
+    void orderJoints();
+    void buildLinkTree();
+    void buildVirtualLinks();
+    void buildLoops();
+    void buildWrapObjects();
+    void buildCouplers();
+    void buildWires();
+
+    void checkJoint(std::size_t j);
+    void addCoordinate(Coordinate coordinate, const std::string& where);
+    void addQuaternionCoordinates(const std::string& where, const std::string& name, const Eigen::Vector4d& quat,
+                                  const Eigen::Vector3d* p);
+    void appendJoint(Joint joint, Link link);
+    void buildJoint(const JointSpec& js);
+    void checkLoop(const LoopSpec& ls, const Loop& loop, const std::string& label) const;
+    int resolveLink(const std::string& where, const std::string& owner, const std::string& name) const;
+    std::pair<int, int> resolveCoordinate(const std::string& where, const std::string& owner,
+                                          const std::string& name) const;
+    void buildWire(const WireSpec& ws);
+    void addWirePoint(const WireSpec& ws, std::size_t k, const std::string& label, Wire& wire);
+    void addWireWrap(const WireWrapSpec& wr, const std::string& where, const std::string& label, Wire& wire) const;
+    void findSupportLinks(Wire& wire) const;
+
+    const ModelBuilder& specs;
+    Model model;
+    std::map<std::string, std::string> linkWhere;       // links' and virtual links' names (one namespace) -> where
+    std::map<std::string, std::size_t> linkSpecIndex;   // link name -> index in specs.links_
+    std::map<std::string, std::size_t> jointOfChild;    // child link name -> index in specs.joints_
+    std::map<std::string, std::string> jointWhere;      // joint name -> where
+    std::vector<std::size_t> order;                     // specs.joints_ indices, parents first
+    std::map<std::string, int> linkIndex;               // link name -> the model's link index
+    std::map<std::string, std::string> coordinateWhere;
+    int nq = 0, nu = 0;                                 // so far
+    std::map<std::string, std::string> loopWhere, wrapWhere, couplerWhere, wireWhere;
+    std::map<std::string, int> wrapIndex;               // wrap object name -> index in the model's
+};
+
+Model ModelBuilder::build() const {
+    Compilation c(*this);
+    c.model.name_ = name_;
+    requireFinite(gravityWhere_, "gravity", gravity_);
+    c.model.gravity_ = gravity_;
+    c.claimLinkNames();
+    c.checkJoints();
+    c.checkLinks();
+    c.orderJoints();
+    c.buildLinkTree();
+    c.buildVirtualLinks();
+    c.buildLoops();
+    c.buildWrapObjects();
+    c.buildCouplers();
+    c.buildWires();
+    buildContacts(c.model);
+    return std::move(c.model);
+}
+
+// Names: links and virtual links share one namespace; "ground" is reserved.
+void ModelBuilder::Compilation::claimLinkNames() {
     auto claimLinkName = [&](const std::string& name, const std::string& where, const char* kind) {
         if (name == "ground") throw ModelError(where, std::string(kind) + " cannot be called 'ground' (reserved)");
         claimName(linkWhere, "link", name, where);
     };
-    std::map<std::string, std::size_t> linkSpecIndex;
-    for (std::size_t i = 0; i < links_.size(); ++i) {
-        claimLinkName(links_[i].name, links_[i].where, "link");
-        linkSpecIndex[links_[i].name] = i;
+    for (std::size_t i = 0; i < specs.links_.size(); ++i) {
+        claimLinkName(specs.links_[i].name, specs.links_[i].where, "link");
+        linkSpecIndex[specs.links_[i].name] = i;
     }
-    for (const VirtualLinkSpec& v : virtualLinks_) {
+    for (const VirtualLinkSpec& v : specs.virtualLinks_) {
         claimLinkName(v.name, v.where, "virtual link");
         requireFinite(v.where, "virtual link '" + v.name + "': initial position", v.initialPosition);
     }
+}
 
-    // Joints: each real link is the child of exactly one joint.
-    std::map<std::string, std::size_t> jointOfChild;
-    std::map<std::string, std::string> jointWhere;
-    for (std::size_t j = 0; j < joints_.size(); ++j) {
-        const JointSpec& js = joints_[j];
-        claimName(jointWhere, "joint", js.name, js.where);
-        const std::string label = "joint '" + js.name + "'";
-        if (!linkSpecIndex.count(js.child))
-            throw ModelError(js.where, label + ": unknown child link '" + js.child + "'" +
-                                           (linkWhere.count(js.child) ? " (virtual links have no joint)" : ""));
-        if (js.parent != "ground" && !linkSpecIndex.count(js.parent))
-            throw ModelError(js.where, label + ": unknown parent link '" + js.parent + "'" +
-                                           (linkWhere.count(js.parent) ? " (a virtual link cannot be a parent)" : ""));
-        if (js.parent == js.child) throw ModelError(js.where, label + ": a link cannot be its own parent");
-        auto [prev, first] = jointOfChild.emplace(js.child, j);
-        if (!first)
-            throw ModelError(js.where, label + ": link '" + js.child + "' already has joint '" +
-                                           joints_[prev->second].name + "' to its parent; close loops with a "
-                                           "'loops' entry instead");
-        requireFinite(js.where, label + ": parent_point", js.p_PF);
-        requireFinite(js.where, label + ": child_point", js.p_BM);
-        if (js.type == JointType::Pin) {
-            if (!js.axis || !js.axis->allFinite() || js.axis->norm() < 1e-12)
-                throw ModelError(js.where, label + ": a pin joint needs a finite, non-zero axis");
-        } else if (js.axis) {
-            throw ModelError(js.where, label + ": only pin joints take an axis");
-        }
-        if (js.type == JointType::Custom) {
-            checkCustomJoint(js, label);
-        } else if (!js.transformAxes.empty() || !js.coordinates.empty()) {
-            throw ModelError(js.where, label + ": only custom joints take transform axes and coordinates");
-        }
-        if ((js.R_PF || js.R_BM) && js.type != JointType::Custom && js.type != JointType::Weld)
-            throw ModelError(js.where, label + ": only custom and weld joints take frame orientations");
-        if (js.R_PF) requireRotation(js.where, label + ": parent frame orientation", *js.R_PF);
-        if (js.R_BM) requireRotation(js.where, label + ": child frame orientation", *js.R_BM);
-        if (js.initialRotation && js.type != JointType::Ball && js.type != JointType::Free)
-            throw ModelError(js.where, label + ": initial_rotation applies to ball and free joints only");
-        if (js.initialAngle && js.type != JointType::Pin)
-            throw ModelError(js.where, label + ": initial_angle applies to pin joints only");
-        if (js.initialPosition && js.type != JointType::Free)
-            throw ModelError(js.where, label + ": initial_position applies to free joints only");
-        if (js.initialRotation) requireFinite(js.where, label + ": initial_rotation", *js.initialRotation);
-        if (js.initialPosition) requireFinite(js.where, label + ": initial_position", *js.initialPosition);
-        if (js.initialAngle && !std::isfinite(*js.initialAngle))
-            throw ModelError(js.where, label + ": initial_angle must be finite");
-    }
-    // A virtual link's 6-DOF joint takes the virtual link's name.
-    for (const VirtualLinkSpec& v : virtualLinks_)
+// Joints: each real link is the child of exactly one joint. A virtual link's 6-DOF joint takes the
+// virtual link's name.
+void ModelBuilder::Compilation::checkJoints() {
+    for (std::size_t j = 0; j < specs.joints_.size(); ++j) checkJoint(j);
+    for (const VirtualLinkSpec& v : specs.virtualLinks_)
         if (jointWhere.count(v.name))
             throw ModelError(v.where, "virtual link '" + v.name + "' has the name of joint '" + v.name + "' (" +
                                           jointWhere.at(v.name) + "); its own joint takes that name");
-    for (const LinkSpec& ls : links_) {
+}
+
+void ModelBuilder::Compilation::checkJoint(std::size_t j) {
+    const JointSpec& js = specs.joints_[j];
+    claimName(jointWhere, "joint", js.name, js.where);
+    const std::string label = "joint '" + js.name + "'";
+    if (!linkSpecIndex.count(js.child))
+        throw ModelError(js.where, label + ": unknown child link '" + js.child + "'" +
+                                       (linkWhere.count(js.child) ? " (virtual links have no joint)" : ""));
+    if (js.parent != "ground" && !linkSpecIndex.count(js.parent))
+        throw ModelError(js.where, label + ": unknown parent link '" + js.parent + "'" +
+                                       (linkWhere.count(js.parent) ? " (a virtual link cannot be a parent)" : ""));
+    if (js.parent == js.child) throw ModelError(js.where, label + ": a link cannot be its own parent");
+    auto [prev, first] = jointOfChild.emplace(js.child, j);
+    if (!first)
+        throw ModelError(js.where, label + ": link '" + js.child + "' already has joint '" +
+                                       specs.joints_[prev->second].name + "' to its parent; close loops with a "
+                                       "'loops' entry instead");
+    requireFinite(js.where, label + ": parent_point", js.p_PF);
+    requireFinite(js.where, label + ": child_point", js.p_BM);
+    if (js.type == JointType::Pin) {
+        if (!js.axis || !js.axis->allFinite() || js.axis->norm() < 1e-12)
+            throw ModelError(js.where, label + ": a pin joint needs a finite, non-zero axis");
+    } else if (js.axis) {
+        throw ModelError(js.where, label + ": only pin joints take an axis");
+    }
+    if (js.type == JointType::Custom) {
+        checkCustomJoint(js, label);
+    } else if (!js.transformAxes.empty() || !js.coordinates.empty()) {
+        throw ModelError(js.where, label + ": only custom joints take transform axes and coordinates");
+    }
+    if ((js.R_PF || js.R_BM) && js.type != JointType::Custom && js.type != JointType::Weld)
+        throw ModelError(js.where, label + ": only custom and weld joints take frame orientations");
+    if (js.R_PF) requireRotation(js.where, label + ": parent frame orientation", *js.R_PF);
+    if (js.R_BM) requireRotation(js.where, label + ": child frame orientation", *js.R_BM);
+    if (js.initialRotation && js.type != JointType::Ball && js.type != JointType::Free)
+        throw ModelError(js.where, label + ": initial_rotation applies to ball and free joints only");
+    if (js.initialAngle && js.type != JointType::Pin)
+        throw ModelError(js.where, label + ": initial_angle applies to pin joints only");
+    if (js.initialPosition && js.type != JointType::Free)
+        throw ModelError(js.where, label + ": initial_position applies to free joints only");
+    if (js.initialRotation) requireFinite(js.where, label + ": initial_rotation", *js.initialRotation);
+    if (js.initialPosition) requireFinite(js.where, label + ": initial_position", *js.initialPosition);
+    if (js.initialAngle && !std::isfinite(*js.initialAngle))
+        throw ModelError(js.where, label + ": initial_angle must be finite");
+}
+
+// Links: each has a joint, and mass properties some rigid body has.
+void ModelBuilder::Compilation::checkLinks() {
+    for (const LinkSpec& ls : specs.links_) {
         auto it = jointOfChild.find(ls.name);
         if (it == jointOfChild.end())
             throw ModelError(ls.where, "link '" + ls.name + "' has no joint (every link needs one joint to its "
                                        "parent or to ground)");
-        checkMassProperties(ls, joints_[it->second].type == JointType::Weld);
+        checkMassProperties(ls, specs.joints_[it->second].type == JointType::Weld);
     }
+}
 
-    // Parents-first order: depth-first from ground, siblings in file order, so subtrees stay contiguous.
+// Parents-first order: depth-first from ground, siblings in file order, so subtrees stay contiguous.
+void ModelBuilder::Compilation::orderJoints() {
+    const std::vector<JointSpec>& joints = specs.joints_;
     std::map<std::string, std::vector<std::size_t>> childJoints;  // parent name -> joints
-    for (std::size_t j = 0; j < joints_.size(); ++j) childJoints[joints_[j].parent].push_back(j);
-    std::vector<std::size_t> order;  // joint spec indices
+    for (std::size_t j = 0; j < joints.size(); ++j) childJoints[joints[j].parent].push_back(j);
     std::vector<std::size_t> stack;
     auto pushChildren = [&](const std::string& parent) {
         const auto& kids = childJoints[parent];
@@ -396,91 +462,102 @@ Model ModelBuilder::build() const {
         const std::size_t j = stack.back();
         stack.pop_back();
         order.push_back(j);
-        pushChildren(joints_[j].child);
+        pushChildren(joints[j].child);
     }
-    if (order.size() != joints_.size()) {
-        for (const JointSpec& js : joints_)
-            if (std::find_if(order.begin(), order.end(), [&](std::size_t o) { return joints_[o].name == js.name; }) ==
+    if (order.size() != joints.size()) {
+        for (const JointSpec& js : joints)
+            if (std::find_if(order.begin(), order.end(), [&](std::size_t o) { return joints[o].name == js.name; }) ==
                 order.end())
                 throw ModelError(js.where, "joint '" + js.name + "' is part of a cycle of joints that never reaches "
                                            "ground; close loops with a 'loops' entry instead");
     }
+}
 
-    std::map<std::string, int> linkIndex;
-    int nq = 0, nu = 0;
-    std::map<std::string, std::string> coordinateWhere;
-    // Appends the next coordinate (q entry) of the joint about to be appended.
-    auto addCoordinate = [&](Coordinate coordinate, const std::string& where) {
-        claimName(coordinateWhere, "coordinate", coordinate.name, where);
-        coordinate.joint = static_cast<int>(model.joints_.size());
-        model.coordinates_.push_back(std::move(coordinate));
-    };
-    // A free or ball joint's quaternion and (free) position entries, named after the joint.
-    auto addQuaternionCoordinates = [&](const std::string& where, const std::string& name, const Eigen::Vector4d& quat,
-                                        const Eigen::Vector3d* p) {
-        static const char* const quaternionSuffixes[] = {"_qw", "_qx", "_qy", "_qz"};
-        static const char* const positionSuffixes[] = {"_x", "_y", "_z"};
-        for (int k = 0; k < 4; ++k) {
-            Coordinate c;
-            c.name = name + quaternionSuffixes[k];
-            c.defaultValue = quat[k];
-            addCoordinate(c, where);
-        }
-        for (int k = 0; p && k < 3; ++k) {
-            Coordinate c;
-            c.name = name + positionSuffixes[k];
-            c.motionType = MotionType::Translational;
-            c.defaultValue = (*p)[k];
-            addCoordinate(c, where);
-        }
-    };
-    auto appendJoint = [&](Joint joint, Link link) {
-        const bool custom = joint.type == JointType::Custom;
-        joint.nq = custom ? static_cast<int>(model.coordinates_.size()) - nq : getNumQ(joint.type);
-        joint.nu = custom ? joint.nq : getNumU(joint.type);
-        joint.qStart = nq;
-        joint.uStart = nu;
-        nq += joint.nq;
-        nu += joint.nu;
-        linkIndex[link.name] = static_cast<int>(model.links_.size());
-        model.links_.push_back(std::move(link));
-        model.joints_.push_back(std::move(joint));
-    };
-    for (std::size_t j : order) {
-        const JointSpec& js = joints_[j];
-        const LinkSpec& ls = links_[linkSpecIndex.at(js.child)];
-        Joint joint;
-        joint.name = js.name;
-        joint.type = js.type;
-        joint.parent = js.parent == "ground" ? kGround : linkIndex.at(js.parent);
-        joint.p_PF = js.p_PF;
-        joint.p_BM = js.p_BM;
-        if (js.type == JointType::Pin) joint.R_PF = joint.R_BM = rotationWithZAlong(*js.axis);
-        if (js.R_PF) joint.R_PF = *js.R_PF;
-        if (js.R_BM) joint.R_BM = *js.R_BM;
-        const Eigen::Vector4d quat = quaternionFromRotationVector(js.initialRotation.value_or(Eigen::Vector3d::Zero()));
-        switch (js.type) {
-            case JointType::Free: {
-                const Eigen::Vector3d p = js.initialPosition.value_or(Eigen::Vector3d::Zero());
-                addQuaternionCoordinates(js.where, js.name, quat, &p);
-                break;
-            }
-            case JointType::Ball: addQuaternionCoordinates(js.where, js.name, quat, nullptr); break;
-            case JointType::Pin: {
-                Coordinate c;
-                c.name = js.name;
-                c.defaultValue = js.initialAngle.value_or(0.0);
-                addCoordinate(c, js.where);
-                break;
-            }
-            case JointType::Weld: break;
-            case JointType::Custom: addCustomCoordinates(js, joint, addCoordinate); break;
-        }
-        // Exactly symmetric (an inertia computed as R D R^T is not), as the model file stores one triangle.
-        const Eigen::Matrix3d inertia_Bcom = 0.5 * (ls.inertia_Bcom + ls.inertia_Bcom.transpose());
-        appendJoint(joint, Link{ls.name, ls.mass, ls.com_B, inertia_Bcom, false});
+// Appends the next coordinate (q entry) of the joint about to be appended.
+void ModelBuilder::Compilation::addCoordinate(Coordinate coordinate, const std::string& where) {
+    claimName(coordinateWhere, "coordinate", coordinate.name, where);
+    coordinate.joint = static_cast<int>(model.joints_.size());
+    model.coordinates_.push_back(std::move(coordinate));
+}
+
+// A free or ball joint's quaternion and (free) position entries, named after the joint.
+void ModelBuilder::Compilation::addQuaternionCoordinates(const std::string& where, const std::string& name,
+                                                         const Eigen::Vector4d& quat, const Eigen::Vector3d* p) {
+    static const char* const quaternionSuffixes[] = {"_qw", "_qx", "_qy", "_qz"};
+    static const char* const positionSuffixes[] = {"_x", "_y", "_z"};
+    for (int k = 0; k < 4; ++k) {
+        Coordinate c;
+        c.name = name + quaternionSuffixes[k];
+        c.defaultValue = quat[k];
+        addCoordinate(c, where);
     }
-    for (const VirtualLinkSpec& v : virtualLinks_) {
+    for (int k = 0; p && k < 3; ++k) {
+        Coordinate c;
+        c.name = name + positionSuffixes[k];
+        c.motionType = MotionType::Translational;
+        c.defaultValue = (*p)[k];
+        addCoordinate(c, where);
+    }
+}
+
+// Appends a joint whose coordinates were just added, with its child link.
+void ModelBuilder::Compilation::appendJoint(Joint joint, Link link) {
+    const bool custom = joint.type == JointType::Custom;
+    joint.nq = custom ? static_cast<int>(model.coordinates_.size()) - nq : getNumQ(joint.type);
+    joint.nu = custom ? joint.nq : getNumU(joint.type);
+    joint.qStart = nq;
+    joint.uStart = nu;
+    nq += joint.nq;
+    nu += joint.nu;
+    linkIndex[link.name] = static_cast<int>(model.links_.size());
+    model.links_.push_back(std::move(link));
+    model.joints_.push_back(std::move(joint));
+}
+
+// The tree's links and joints, parents first, each joint with its coordinates.
+void ModelBuilder::Compilation::buildLinkTree() {
+    for (std::size_t j : order) buildJoint(specs.joints_[j]);
+}
+
+void ModelBuilder::Compilation::buildJoint(const JointSpec& js) {
+    const LinkSpec& ls = specs.links_[linkSpecIndex.at(js.child)];
+    Joint joint;
+    joint.name = js.name;
+    joint.type = js.type;
+    joint.parent = js.parent == "ground" ? kGround : linkIndex.at(js.parent);
+    joint.p_PF = js.p_PF;
+    joint.p_BM = js.p_BM;
+    if (js.type == JointType::Pin) joint.R_PF = joint.R_BM = rotationWithZAlong(*js.axis);
+    if (js.R_PF) joint.R_PF = *js.R_PF;
+    if (js.R_BM) joint.R_BM = *js.R_BM;
+    const Eigen::Vector4d quat = quaternionFromRotationVector(js.initialRotation.value_or(Eigen::Vector3d::Zero()));
+    switch (js.type) {
+        case JointType::Free: {
+            const Eigen::Vector3d p = js.initialPosition.value_or(Eigen::Vector3d::Zero());
+            addQuaternionCoordinates(js.where, js.name, quat, &p);
+            break;
+        }
+        case JointType::Ball: addQuaternionCoordinates(js.where, js.name, quat, nullptr); break;
+        case JointType::Pin: {
+            Coordinate c;
+            c.name = js.name;
+            c.defaultValue = js.initialAngle.value_or(0.0);
+            addCoordinate(c, js.where);
+            break;
+        }
+        case JointType::Weld: break;
+        case JointType::Custom:
+            addCustomCoordinates(js, joint, [&](Coordinate c, const std::string& where) { addCoordinate(c, where); });
+            break;
+    }
+    // Exactly symmetric (an inertia computed as R D R^T is not), as the model file stores one triangle.
+    const Eigen::Matrix3d inertia_Bcom = 0.5 * (ls.inertia_Bcom + ls.inertia_Bcom.transpose());
+    appendJoint(joint, Link{ls.name, ls.mass, ls.com_B, inertia_Bcom, false});
+}
+
+// Virtual links: massless, on free joints of their own name after the tree; then the model's sizes.
+void ModelBuilder::Compilation::buildVirtualLinks() {
+    for (const VirtualLinkSpec& v : specs.virtualLinks_) {
         Joint joint;
         joint.name = v.name;
         joint.type = JointType::Free;
@@ -494,71 +571,82 @@ Model ModelBuilder::build() const {
     model.nu_ = nu;
     model.defaultQ_.resize(nq);
     for (int i = 0; i < nq; ++i) model.defaultQ_[i] = model.coordinates_[static_cast<std::size_t>(i)].defaultValue;
+}
 
-    auto resolveLink = [&](const std::string& where, const std::string& owner, const std::string& name) {
-        if (name == "ground")
-            throw ModelError(where, owner + ": 'ground' is not a link; attach to a link (fix a link to ground with a "
-                                            "weld joint, or simulate with --hang-by)");
-        auto it = linkIndex.find(name);
-        if (it == linkIndex.end()) throw ModelError(where, owner + ": unknown link '" + name + "'");
-        return it->second;
-    };
+int ModelBuilder::Compilation::resolveLink(const std::string& where, const std::string& owner,
+                                           const std::string& name) const {
+    if (name == "ground")
+        throw ModelError(where, owner + ": 'ground' is not a link; attach to a link (fix a link to ground with a "
+                                        "weld joint, or simulate with --hang-by)");
+    auto it = linkIndex.find(name);
+    if (it == linkIndex.end()) throw ModelError(where, owner + ": unknown link '" + name + "'");
+    return it->second;
+}
 
-    // Loops.
-    std::map<std::string, std::string> loopWhere;
-    for (const LoopSpec& ls : loops_) {
+// A coordinate a wire point or coupler depends on: its index in q and in u, for one with qdot = u.
+std::pair<int, int> ModelBuilder::Compilation::resolveCoordinate(const std::string& where, const std::string& owner,
+                                                                 const std::string& name) const {
+    const int q = model.findCoordinateIndex(name);
+    if (q == Model::kNotFound) throw ModelError(where, owner + ": unknown coordinate '" + name + "'");
+    const Joint& joint = model.joints_[static_cast<std::size_t>(model.coordinates_[static_cast<std::size_t>(q)].joint)];
+    if (joint.nq != joint.nu)
+        throw ModelError(where, owner + ": coordinate '" + name + "' is part of " + toString(joint.type) + " joint '" +
+                                    joint.name + "'s quaternion; only pin and custom coordinates (qdot = u) can be named here");
+    return std::pair<int, int>(q, joint.uStart + (q - joint.qStart));
+}
+
+// Loops: two distinct links, closing neither another loop's joint nor a tree joint.
+void ModelBuilder::Compilation::buildLoops() {
+    for (const LoopSpec& ls : specs.loops_) {
         claimName(loopWhere, "loop", ls.name, ls.where);
         const std::string label = "loop '" + ls.name + "'";
-        Loop loop{ls.name, resolveLink(ls.where, label, ls.linkA), ls.p_A, resolveLink(ls.where, label, ls.linkB), ls.p_B};
+        const Loop loop{ls.name, resolveLink(ls.where, label, ls.linkA), ls.p_A, resolveLink(ls.where, label, ls.linkB),
+                        ls.p_B};
         requireFinite(ls.where, label + ": point_a", ls.p_A);
         requireFinite(ls.where, label + ": point_b", ls.p_B);
         if (loop.linkA == loop.linkB) throw ModelError(ls.where, label + ": both ends are on link '" + ls.linkA + "'");
-        for (const Loop& other : model.loops_) {
-            const bool same = (other.linkA == loop.linkA && other.linkB == loop.linkB && other.p_A.isApprox(loop.p_A) &&
-                               other.p_B.isApprox(loop.p_B)) ||
-                              (other.linkA == loop.linkB && other.linkB == loop.linkA && other.p_A.isApprox(loop.p_B) &&
-                               other.p_B.isApprox(loop.p_A));
-            if (same)
-                throw ModelError(ls.where, label + " closes the same joint as loop '" + other.name + "' (" +
-                                               loopWhere.at(other.name) + ")");
-        }
-        for (int end = 0; end < 2; ++end) {
-            const int child = end == 0 ? loop.linkA : loop.linkB;
-            const int parent = end == 0 ? loop.linkB : loop.linkA;
-            const Joint& joint = model.joints_[static_cast<std::size_t>(child)];
-            const Eigen::Vector3d& p_child = end == 0 ? loop.p_A : loop.p_B;
-            const Eigen::Vector3d& p_parent = end == 0 ? loop.p_B : loop.p_A;
-            if (joint.parent == parent && joint.type != JointType::Free && (p_child - joint.p_BM).norm() < 1e-12 &&
-                (p_parent - joint.p_PF).norm() < 1e-12)
-                throw ModelError(ls.where, label + " closes over tree joint '" + joint.name +
-                                               "', which already joins these two points");
-        }
+        checkLoop(ls, loop, label);
         model.loops_.push_back(loop);
     }
+}
 
-    // Wrap objects, then wires (which name them).
-    std::map<std::string, std::string> wrapWhere;
-    std::map<std::string, int> wrapIndex;
-    for (const WrapObjectSpec& os : wrapObjects_) {
+void ModelBuilder::Compilation::checkLoop(const LoopSpec& ls, const Loop& loop, const std::string& label) const {
+    for (const Loop& other : model.loops_) {
+        const bool same = (other.linkA == loop.linkA && other.linkB == loop.linkB && other.p_A.isApprox(loop.p_A) &&
+                           other.p_B.isApprox(loop.p_B)) ||
+                          (other.linkA == loop.linkB && other.linkB == loop.linkA && other.p_A.isApprox(loop.p_B) &&
+                           other.p_B.isApprox(loop.p_A));
+        if (same)
+            throw ModelError(ls.where, label + " closes the same joint as loop '" + other.name + "' (" +
+                                           loopWhere.at(other.name) + ")");
+    }
+    for (int end = 0; end < 2; ++end) {
+        const int child = end == 0 ? loop.linkA : loop.linkB;
+        const int parent = end == 0 ? loop.linkB : loop.linkA;
+        const Joint& joint = model.joints_[static_cast<std::size_t>(child)];
+        const Eigen::Vector3d& p_child = end == 0 ? loop.p_A : loop.p_B;
+        const Eigen::Vector3d& p_parent = end == 0 ? loop.p_B : loop.p_A;
+        if (joint.parent == parent && joint.type != JointType::Free && (p_child - joint.p_BM).norm() < 1e-12 &&
+            (p_parent - joint.p_PF).norm() < 1e-12)
+            throw ModelError(ls.where, label + " closes over tree joint '" + joint.name +
+                                           "', which already joins these two points");
+    }
+}
+
+// Wrap objects, before the wires that name them.
+void ModelBuilder::Compilation::buildWrapObjects() {
+    for (const WrapObjectSpec& os : specs.wrapObjects_) {
         claimName(wrapWhere, "wrap object", os.name, os.where);
         wrapIndex[os.name] = static_cast<int>(model.wrapObjects_.size());
         model.wrapObjects_.push_back(buildWrapObject(os, resolveLink(os.where, "wrap object '" + os.name + "'", os.link)));
     }
-    // A coordinate a wire point depends on: its index in q and in u, for one with qdot = u.
-    auto resolveCoordinate = [&](const std::string& where, const std::string& owner, const std::string& name) {
-        const int q = model.findCoordinateIndex(name);
-        if (q == Model::kNotFound) throw ModelError(where, owner + ": unknown coordinate '" + name + "'");
-        const Joint& joint = model.joints_[static_cast<std::size_t>(model.coordinates_[static_cast<std::size_t>(q)].joint)];
-        if (joint.nq != joint.nu)
-            throw ModelError(where, owner + ": coordinate '" + name + "' is part of " + toString(joint.type) + " joint '" +
-                                        joint.name + "'s quaternion; only pin and custom coordinates (qdot = u) can be named here");
-        return std::pair<int, int>(q, joint.uStart + (q - joint.qStart));
-    };
+}
 
-    // Couplers: distinct coordinates, each dependent on one coupler at most, no dependent one driving
-    // another coupler (moment arms and applyCoordinateCouplers take one step of the chain rule).
-    std::map<std::string, std::string> couplerWhere;
-    for (const CoordinateCouplerSpec& cs : couplers_) {
+// Couplers: distinct coordinates, each dependent on one coupler at most, no dependent one driving
+// another coupler (moment arms and applyCoordinateCouplers take one step of the chain rule). Then the
+// custom joints' collinear translations, which a coupler may make legal.
+void ModelBuilder::Compilation::buildCouplers() {
+    for (const CoordinateCouplerSpec& cs : specs.couplers_) {
         claimName(couplerWhere, "coupler", cs.name, cs.where);
         const std::string label = "coupler '" + cs.name + "'";
         if (!std::isfinite(cs.scaleFactor)) throw ModelError(cs.where, label + ": scale factor must be finite");
@@ -579,97 +667,130 @@ Model ModelBuilder::build() const {
     }
     for (std::size_t k = 0; k < order.size(); ++k)
         if (model.joints_[k].type == JointType::Custom)
-            checkCollinearTranslations(model, joints_[order[k]], model.joints_[k], "joint '" + model.joints_[k].name + "'");
+            checkCollinearTranslations(model, specs.joints_[order[k]], model.joints_[k],
+                                       "joint '" + model.joints_[k].name + "'");
+}
 
-    std::map<std::string, std::string> wireWhere;
-    for (const WireSpec& ws : wires_) {
-        claimName(wireWhere, "wire", ws.name, ws.where);
-        const std::string label = "wire '" + ws.name + "'";
-        if (ws.points.size() < 2)
-            throw ModelError(ws.where, label + " has " + std::to_string(ws.points.size()) +
-                                           " point(s); a wire needs at least 2 (origin and insertion)");
-        Wire wire;
-        wire.name = ws.name;
-        wire.kind = ws.kind;
-        wire.firstPoint = static_cast<int>(model.wirePoints_.size());
-        wire.numPoints = static_cast<int>(ws.points.size());
-        for (std::size_t k = 0; k < ws.points.size(); ++k) {
-            const WirePointSpec& ps = ws.points[k];
-            const std::string& where = ps.where.empty() ? ws.where : ps.where;
-            const std::string pointLabel = label + ": point " + std::to_string(k);
-            WirePoint point{resolveLink(where, label, ps.link), ps.p_B};
-            const int pointIndex = static_cast<int>(k);
-            if (ps.condition) {
-                const WirePointConditionSpec& c = *ps.condition;
-                if (!std::isfinite(c.min) || !std::isfinite(c.max) || c.min > c.max)
-                    throw ModelError(where, pointLabel + ": the active range of coordinate '" + c.coordinate +
-                                                "' must be finite with min <= max");
-                wire.conditions.push_back({pointIndex, resolveCoordinate(where, pointLabel, c.coordinate).first, c.min, c.max});
-            }
-            std::array<bool, 3> moving{false, false, false};
-            for (const WirePointMotionSpec& m : ps.motions) {
-                if (m.axis < 0 || m.axis > 2 || moving[static_cast<std::size_t>(m.axis)])
-                    throw ModelError(where, pointLabel + ": each of x, y, z can move with one coordinate at most");
-                moving[static_cast<std::size_t>(m.axis)] = true;
-                point.p_B[m.axis] = 0;  // not read: the function gives this component
-                const auto [q, u] = resolveCoordinate(where, pointLabel, m.coordinate);
-                wire.motions.push_back({pointIndex, m.axis, q, u, m.function});
-            }
-            requireFinite(where, pointLabel, point.p_B);
-            // Only two fixed points can coincide for good; conditional and moving ones part again.
-            const bool fixedPair = k > 0 && !ps.condition && ps.motions.empty() && !ws.points[k - 1].condition &&
-                                   ws.points[k - 1].motions.empty();
-            if (fixedPair) {
-                const WirePoint& prev = model.wirePoints_.back();
-                if (prev.link == point.link && (prev.p_B - point.p_B).norm() < 1e-12)
-                    throw ModelError(where, label + ": points " + std::to_string(k - 1) + " and " + std::to_string(k) +
-                                                " coincide on link '" + ps.link + "' (zero-length segment)");
-            }
-            model.wirePoints_.push_back(point);
-        }
-        for (const WireWrapSpec& wr : ws.wraps) {
-            const std::string& where = wr.where.empty() ? ws.where : wr.where;
-            auto it = wrapIndex.find(wr.object);
-            if (it == wrapIndex.end()) throw ModelError(where, label + ": unknown wrap object '" + wr.object + "'");
-            const WrapObject& object = model.wrapObjects_[static_cast<std::size_t>(it->second)];
-            const int sideSiteLink = wr.sideSiteLink.empty()
-                                         ? object.link
-                                         : resolveLink(where, label + ": wrap over '" + wr.object + "': side site", wr.sideSiteLink);
-            const WireWrap wrap = buildWireWrap(wr, where, label, wire.numPoints, object, it->second, sideSiteLink);
-            // MuJoCo may wrap one geom in several segments of a tendon, but each segment over one geom only.
-            for (const WireWrap& other : wire.wraps) {
-                const bool mujoco = wrap.method == WrapMethod::MuJoCo || other.method == WrapMethod::MuJoCo;
-                const bool overlapping = other.firstPoint < wrap.lastPoint && wrap.firstPoint < other.lastPoint;
-                if (!mujoco && other.object == it->second)
-                    throw ModelError(where, label + ": wraps over '" + wr.object + "' twice");
-                if (mujoco && overlapping)
-                    throw ModelError(where, label + ": a mujoco wrap's segment [" + std::to_string(wrap.firstPoint) + ", " +
-                                                std::to_string(wrap.lastPoint) + "] is wrapped by one object only");
-            }
-            wire.wraps.push_back(wrap);
-        }
-        wire.lawSpec = ws.law;
-        try {
-            wire.law = ForceLawRegistry::global().create(ws.law.type, ws.law.parameters);
-        } catch (const ModelError&) {
-            throw;
-        } catch (const Error& e) {
-            throw ModelError(ws.lawWhere.empty() ? ws.where : ws.lawWhere, label + ": " + e.what());
-        }
-        std::set<int, std::greater<int>> support;
-        auto addSupport = [&](int link) {
-            for (int l = link; l != kGround; l = model.joints_[static_cast<std::size_t>(l)].parent)
-                if (!support.insert(l).second) break;
-        };
-        for (int k = 0; k < wire.numPoints; ++k) addSupport(model.wirePoints_[static_cast<std::size_t>(wire.firstPoint + k)].link);
-        for (const WireWrap& wrap : wire.wraps) {
-            addSupport(model.wrapObjects_[static_cast<std::size_t>(wrap.object)].link);
-            if (wrap.hasSideSite) addSupport(wrap.sideSiteLink);
-        }
-        wire.supportLinks.assign(support.begin(), support.end());
-        model.wires_.push_back(std::move(wire));
+// Wires: points, wraps, force law and the links they act on.
+void ModelBuilder::Compilation::buildWires() {
+    for (const WireSpec& ws : specs.wires_) buildWire(ws);
+}
+
+void ModelBuilder::Compilation::buildWire(const WireSpec& ws) {
+    claimName(wireWhere, "wire", ws.name, ws.where);
+    const std::string label = "wire '" + ws.name + "'";
+    if (ws.points.size() < 2)
+        throw ModelError(ws.where, label + " has " + std::to_string(ws.points.size()) +
+                                       " point(s); a wire needs at least 2 (origin and insertion)");
+    Wire wire;
+    wire.name = ws.name;
+    wire.kind = ws.kind;
+    wire.firstPoint = static_cast<int>(model.wirePoints_.size());
+    wire.numPoints = static_cast<int>(ws.points.size());
+    for (std::size_t k = 0; k < ws.points.size(); ++k) addWirePoint(ws, k, label, wire);
+    for (const WireWrapSpec& wr : ws.wraps) addWireWrap(wr, wr.where.empty() ? ws.where : wr.where, label, wire);
+    wire.lawSpec = ws.law;
+    try {
+        wire.law = ForceLawRegistry::global().create(ws.law.type, ws.law.parameters);
+    } catch (const ModelError&) {
+        throw;
+    } catch (const Error& e) {
+        throw ModelError(ws.lawWhere.empty() ? ws.where : ws.lawWhere, label + ": " + e.what());
     }
-    return model;
+    findSupportLinks(wire);
+    model.wires_.push_back(std::move(wire));
+}
+
+// Point k of wire ws, with its condition and motions, onto the model's wire points.
+void ModelBuilder::Compilation::addWirePoint(const WireSpec& ws, std::size_t k, const std::string& label, Wire& wire) {
+    const WirePointSpec& ps = ws.points[k];
+    const std::string& where = ps.where.empty() ? ws.where : ps.where;
+    const std::string pointLabel = label + ": point " + std::to_string(k);
+    WirePoint point{resolveLink(where, label, ps.link), ps.p_B};
+    const int pointIndex = static_cast<int>(k);
+    if (ps.condition) {
+        const WirePointConditionSpec& c = *ps.condition;
+        if (!std::isfinite(c.min) || !std::isfinite(c.max) || c.min > c.max)
+            throw ModelError(where, pointLabel + ": the active range of coordinate '" + c.coordinate +
+                                        "' must be finite with min <= max");
+        wire.conditions.push_back({pointIndex, resolveCoordinate(where, pointLabel, c.coordinate).first, c.min, c.max});
+    }
+    std::array<bool, 3> moving{false, false, false};
+    for (const WirePointMotionSpec& m : ps.motions) {
+        if (m.axis < 0 || m.axis > 2 || moving[static_cast<std::size_t>(m.axis)])
+            throw ModelError(where, pointLabel + ": each of x, y, z can move with one coordinate at most");
+        moving[static_cast<std::size_t>(m.axis)] = true;
+        point.p_B[m.axis] = 0;  // not read: the function gives this component
+        const auto [q, u] = resolveCoordinate(where, pointLabel, m.coordinate);
+        wire.motions.push_back({pointIndex, m.axis, q, u, m.function});
+    }
+    requireFinite(where, pointLabel, point.p_B);
+    // Only two fixed points can coincide for good; conditional and moving ones part again.
+    const bool fixedPair = k > 0 && !ps.condition && ps.motions.empty() && !ws.points[k - 1].condition &&
+                           ws.points[k - 1].motions.empty();
+    if (fixedPair) {
+        const WirePoint& prev = model.wirePoints_.back();
+        if (prev.link == point.link && (prev.p_B - point.p_B).norm() < 1e-12)
+            throw ModelError(where, label + ": points " + std::to_string(k - 1) + " and " + std::to_string(k) +
+                                        " coincide on link '" + ps.link + "' (zero-length segment)");
+    }
+    model.wirePoints_.push_back(point);
+}
+
+void ModelBuilder::Compilation::addWireWrap(const WireWrapSpec& wr, const std::string& where, const std::string& label,
+                                            Wire& wire) const {
+    auto it = wrapIndex.find(wr.object);
+    if (it == wrapIndex.end()) throw ModelError(where, label + ": unknown wrap object '" + wr.object + "'");
+    const WrapObject& object = model.wrapObjects_[static_cast<std::size_t>(it->second)];
+    const int sideSiteLink = wr.sideSiteLink.empty()
+                                 ? object.link
+                                 : resolveLink(where, label + ": wrap over '" + wr.object + "': side site", wr.sideSiteLink);
+    const WireWrap wrap = buildWireWrap(wr, where, label, wire.numPoints, object, it->second, sideSiteLink);
+    // MuJoCo may wrap one geom in several segments of a tendon, but each segment over one geom only.
+    for (const WireWrap& other : wire.wraps) {
+        const bool mujoco = wrap.method == WrapMethod::MuJoCo || other.method == WrapMethod::MuJoCo;
+        const bool overlapping = other.firstPoint < wrap.lastPoint && wrap.firstPoint < other.lastPoint;
+        if (!mujoco && other.object == it->second)
+            throw ModelError(where, label + ": wraps over '" + wr.object + "' twice");
+        if (mujoco && overlapping)
+            throw ModelError(where, label + ": a mujoco wrap's segment [" + std::to_string(wrap.firstPoint) + ", " +
+                                        std::to_string(wrap.lastPoint) + "] is wrapped by one object only");
+    }
+    wire.wraps.push_back(wrap);
+}
+
+// The links between the wire's points (and wrap objects, side sites) and the root, tip to base.
+void ModelBuilder::Compilation::findSupportLinks(Wire& wire) const {
+    std::set<int, std::greater<int>> support;
+    auto addSupport = [&](int link) {
+        for (int l = link; l != kGround; l = model.joints_[static_cast<std::size_t>(l)].parent)
+            if (!support.insert(l).second) break;
+    };
+    for (int k = 0; k < wire.numPoints; ++k) addSupport(model.wirePoints_[static_cast<std::size_t>(wire.firstPoint + k)].link);
+    for (const WireWrap& wrap : wire.wraps) {
+        addSupport(model.wrapObjects_[static_cast<std::size_t>(wrap.object)].link);
+        if (wrap.hasSideSite) addSupport(wrap.sideSiteLink);
+    }
+    wire.supportLinks.assign(support.begin(), support.end());
+}
+
+void ModelBuilder::buildContacts(Model& model) const {
+    std::map<std::string, std::string> contactWhere;
+    for (const ContactSpec& cs : contacts_) {
+        claimName(contactWhere, "contact", cs.name, cs.where);
+        const std::string label = "contact '" + cs.name + "'";
+        const int link = model.findLinkIndex(cs.link);
+        if (link == Model::kNotFound || link == kGround)
+            throw ModelError(cs.where, label + ": unknown link '" + cs.link + "' (a contact is on one of the model's links)");
+        if (model.links_[static_cast<std::size_t>(link)].isVirtual)
+            throw ModelError(cs.where, label + ": link '" + cs.link + "' is a virtual link, which cannot touch the ground");
+        if (cs.sole_B.empty()) throw ModelError(cs.where, label + ": the sole needs at least one vertex");
+        for (std::size_t k = 0; k < cs.sole_B.size(); ++k)
+            requireFinite(cs.where, label + ": sole vertex " + std::to_string(k), cs.sole_B[k]);
+        if (!(cs.friction >= 0) || !std::isfinite(cs.friction))
+            throw ModelError(cs.where, label + ": friction " + std::to_string(cs.friction) + " must be finite and >= 0");
+        model.contacts_.push_back({cs.name, link, cs.sole_B, cs.friction});
+    }
 }
 
 }  // namespace sinew

@@ -99,6 +99,13 @@ double ThelenMuscle::doCalcTension(const WireState& state) const {
     return parameters_.maxIsometricForce * fiberForce * fiber.cosPennation;
 }
 
+// OpenSim's Thelen2003Muscle::calcInextensibleTendonActiveFiberForce(s, 1) per max isometric force: what
+// its StaticOptimization takes as the force per unit activation with use_muscle_physiology.
+double ThelenMuscle::calcActiveForceMultiplier(const WireState& state) const {
+    const ThelenFiberState fiber = calcFiberState(state.length, state.speed, 1.0);
+    return fiber.activeForceLength * fiber.forceVelocity * fiber.cosPennation;
+}
+
 // Along a rigid tendon d(fibre length)/d(length) = cos(pennation), so the passive tension's work is the
 // passive fibre force's work along the fibre.
 double ThelenMuscle::doCalcPotentialEnergy(double length) const {

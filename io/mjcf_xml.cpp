@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <sstream>
 #include <strings.h>
 
 #include "sinew/core/error.hpp"
@@ -187,16 +186,6 @@ int readKeyword(const XmlElement& element, const char* name, const std::vector<c
         known += (i == 0 ? "" : i + 1 == keywords.size() ? " or " : ", ") + std::string(keywords[i]);
     }
     failAttribute(element, name, "'" + std::string(text) + "': expected " + known);
-}
-
-std::string describeAt(const std::string& kind, const std::string& name, const std::string& where) {
-    return (name.empty() ? kind : kind + " '" + name + "'") + " (" + where + ")";
-}
-
-std::string formatNumber(double value) {
-    std::ostringstream text;
-    text << value;
-    return text.str();
 }
 
 bool readTrueFalseAuto(const XmlElement& element, const char* name, int& value) {

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "conversion_notes.hpp"
+
 namespace sinew::mjcf {
 
 struct XmlElement {
@@ -49,12 +51,6 @@ std::optional<std::string> readText(const XmlElement& element, const char* name)
 // The index of the attribute's keyword in `keywords`, or -1 when the attribute is absent; another word is
 // an error listing the keywords.
 int readKeyword(const XmlElement& element, const char* name, const std::vector<const char*>& keywords);
-// "kind 'name' (where)", or "kind (where)" without a name: how notImported lines name an element.
-std::string describeAt(const std::string& kind, const std::string& name, const std::string& where);
-
-// A number as messages show it: six significant digits, no trailing zeros (0.1, 1e-08).
-std::string formatNumber(double value);
-
 // MuJoCo's true/false/auto: 0, 1 or 2 into `value`.
 bool readTrueFalseAuto(const XmlElement& element, const char* name, int& value);
 

@@ -62,17 +62,14 @@ ModelFormat detectModelFormat(const std::string& path) {
 Model loadModel(const std::string& path, const std::function<void(const std::string&)>& notes) {
     const ModelFormat format = detectModelFormat(path);
     if (format == ModelFormat::SinewYaml) return readModelFile(path);
-    auto report = [&](const std::vector<std::string>& lines) {
-        if (notes)
-            for (const std::string& line : lines) notes("not imported: " + line);
-    };
     if (format == ModelFormat::Mjcf) {
         MjcfConversion conversion = readMjcfModel(path);
-        report(conversion.notImported);
+        if (notes)
+            for (const std::string& line : conversion.notImported) notes("not imported: " + line);
         return std::move(conversion.model);
     }
     OsimConversion conversion = convertOsimModel(readOsimModel(path));
-    report(conversion.notImported);
+    reportOsimConversion(conversion, notes);
     return std::move(conversion.model);
 }
 

@@ -1,17 +1,16 @@
 #include "sinew/io/osim_model_converter.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
+#include "conversion_notes.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/model_builder.hpp"
 
 namespace sinew {
 namespace {
-
-std::string describe(const std::string& type, const std::string& name, const std::string& where) {
-    return type + " '" + name + "' (" + where + ")";
-}
 
 // OpenSim's fixed-axis joints written as CustomJoint SpatialTransforms (docs/opensim-import.md): for each
 // of rotation1-3 and translation1-3, the axis in F and the index of the joint coordinate driving it
@@ -42,7 +41,23 @@ std::string linkName(const OsimModel& osim, const std::string& body) {
     return body == osim.ground.name ? std::string("ground") : body;
 }
 
-LinkSpec convertBody(const OsimBody& body) {
+// SimTK::Inertia's own validity test (MassProperties.h, Inertia_::errChk), which OpenSim's Body relies on:
+// moments non-negative, the triangle inequality and the products bounded by the moments, each with
+// Simbody's slop of sqrt(eps) times the moments' sum.
+bool isValidSimbodyInertia(const Eigen::Matrix3d& I) {
+    const Eigen::Vector3d d = I.diagonal();
+    const double significant = std::pow(std::numeric_limits<double>::epsilon(), 7.0 / 8.0);  // SimTK::SignificantReal
+    if (!(d.minCoeff() >= -significant)) return false;
+    const double slop = std::max(d.sum(), 1.0) * std::sqrt(std::numeric_limits<double>::epsilon());
+    return d[0] + d[1] + slop >= d[2] && d[0] + d[2] + slop >= d[1] && d[1] + d[2] + slop >= d[0] &&
+           d[0] + slop >= std::abs(2 * I(1, 2)) && d[1] + slop >= std::abs(2 * I(0, 2)) &&
+           d[2] + slop >= std::abs(2 * I(0, 1));
+}
+
+// OpenSim's Body::getInertia policy, applied where OpenSim applies it and reported in `notes`: a massless
+// body (|mass| <= SimTK::SignificantReal) gets zero inertia; an inertia SimTK::Inertia refuses becomes a
+// sphere whose moment is the norm of the given moments over sqrt(3).
+LinkSpec convertBody(const OsimBody& body, std::vector<std::string>& notes) {
     LinkSpec link;
     link.name = body.name;
     link.mass = body.mass;
@@ -50,6 +65,22 @@ LinkSpec convertBody(const OsimBody& body) {
     const auto& I = body.inertia;  // Ixx Iyy Izz Ixy Ixz Iyz
     link.inertia_Bcom << I[0], I[3], I[4], I[3], I[1], I[5], I[4], I[5], I[2];
     link.where = body.where;
+    if (!link.inertia_Bcom.allFinite() || !std::isfinite(link.mass)) return link;  // the builder names the field
+    const double significant = std::pow(std::numeric_limits<double>::epsilon(), 7.0 / 8.0);
+    if (std::abs(link.mass) <= significant) {
+        if (!link.inertia_Bcom.isZero(0))
+            notes.push_back(describeAt("Body", body.name, body.where) +
+                            ": massless but with non-zero inertia; inertia reset to zero, as OpenSim does");
+        link.mass = 0;
+        link.inertia_Bcom.setZero();
+    } else if (!isValidSimbodyInertia(link.inertia_Bcom)) {
+        const Eigen::Vector3d moments = link.inertia_Bcom.diagonal();
+        const double sphere = moments.norm() / std::sqrt(3.0);
+        notes.push_back(describeAt("Body", body.name, body.where) + ": invalid inertia (moments " +
+                        formatNumber(moments[0]) + ", " + formatNumber(moments[1]) + ", " + formatNumber(moments[2]) +
+                        "); reset to a sphere of moment " + formatNumber(sphere) + " kg m^2, as OpenSim's Body does");
+        link.inertia_Bcom = sphere * Eigen::Matrix3d::Identity();
+    }
     return link;
 }
 
@@ -136,11 +167,44 @@ WrapObjectSpec convertWrapObject(const OsimWrapObject& w, const std::string& lin
     return spec;
 }
 
+// sinew's wire points sit on links, so path points on ground (muscles anchored to the world, as in
+// Tug_of_War) go to a massless link welded to ground at the world frame: the same geometry and dynamics.
+std::string getGroundAnchorName(const OsimModel& osim) {
+    std::string name = "ground_anchor";
+    auto taken = [&](const std::string& candidate) {
+        return std::any_of(osim.bodies.begin(), osim.bodies.end(),
+                           [&](const OsimBody& body) { return body.name == candidate; });
+    };
+    while (taken(name)) name += "_";
+    return name;
+}
+
+bool hasGroundPathPoints(const OsimModel& osim) {
+    for (const OsimPathForce& force : osim.pathForces)
+        for (const OsimPathPoint& point : force.path.points)
+            if (point.frame.body == osim.ground.name) return true;
+    return false;
+}
+
+void addGroundAnchor(const OsimModel& osim, ModelBuilder& builder, std::vector<std::string>& notes) {
+    const std::string name = getGroundAnchorName(osim);
+    builder.addLink(LinkSpec{name, 0.0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero(), osim.ground.where});
+    JointSpec weld;
+    weld.name = name + "_weld";
+    weld.type = JointType::Weld;
+    weld.parent = "ground";
+    weld.child = name;
+    weld.where = osim.ground.where;
+    builder.addJoint(weld);
+    notes.push_back(describeAt("Ground", osim.ground.name, osim.ground.where) + ": its path points are on '" + name +
+                    "', a massless link welded to ground (sinew's wire points sit on links)");
+}
+
 WirePointSpec convertPathPoint(const OsimModel& osim, const OsimPathPoint& point, const std::string& muscle) {
     WirePointSpec spec;
     spec.link = point.frame.body;
     spec.where = point.where;
-    if (spec.link == osim.ground.name) spec.link = "ground";
+    if (spec.link == osim.ground.name) spec.link = getGroundAnchorName(osim);
     if (point.type != OsimPathPoint::Type::Moving) {
         spec.p_B = point.frame.p_BF + point.frame.R_BF * point.location;
         if (point.type == OsimPathPoint::Type::Conditional)
@@ -234,6 +298,12 @@ CoordinateCouplerSpec convertCoupler(const OsimCoordinateCoupler& coupler) {
 
 }  // namespace
 
+void reportOsimConversion(const OsimConversion& conversion, const std::function<void(const std::string&)>& notes) {
+    if (!notes) return;
+    for (const std::string& line : conversion.warnings) notes("warning: " + line);
+    for (const std::string& line : conversion.notImported) notes("not imported: " + line);
+}
+
 Function convertOsimFunction(const OsimFunction& f) {
     try {
         switch (f.type) {
@@ -259,15 +329,17 @@ OsimConversion convertOsimModel(const OsimModel& osim) {
     ModelBuilder builder(osim.name);
     std::vector<std::string> notImported;
     builder.setGravity(osim.gravity, osim.file);
-    for (const OsimBody& body : osim.bodies) builder.addLink(convertBody(body));
+    std::vector<std::string> warnings;
+    for (const OsimBody& body : osim.bodies) builder.addLink(convertBody(body, warnings));
     for (const OsimJoint& joint : osim.joints) builder.addJoint(convertJoint(osim, joint));
+    if (hasGroundPathPoints(osim)) addGroundAnchor(osim, builder, warnings);
 
     auto addWrapObjects = [&](const OsimBody& body) {
         for (const OsimWrapObject& w : body.wrapObjects) {
             if (w.shape == OsimWrapObject::Shape::Torus)
-                notImported.push_back(describe("WrapTorus", w.name, w.where) + ": torus wrapping is not supported");
+                notImported.push_back(describeAt("WrapTorus", w.name, w.where) + ": torus wrapping is not supported");
             else if (!w.active)
-                notImported.push_back(describe("wrap object", w.name, w.where) + ": inactive");
+                notImported.push_back(describeAt("wrap object", w.name, w.where) + ": inactive");
             else
                 builder.addWrapObject(convertWrapObject(w, linkName(osim, body.name)));
         }
@@ -277,10 +349,10 @@ OsimConversion convertOsimModel(const OsimModel& osim) {
 
     for (const OsimPathForce& force : osim.pathForces) {
         if (force.kind != OsimPathForce::Kind::Muscle)
-            notImported.push_back(describe(force.type, force.name, force.where) +
+            notImported.push_back(describeAt(force.type, force.name, force.where) +
                                   ": only muscles become wires so far");
         else if (!force.limits.appliesForce)
-            notImported.push_back(describe(force.type, force.name, force.where) + ": disabled in the model");
+            notImported.push_back(describeAt(force.type, force.name, force.where) + ": disabled in the model");
         else
             addMuscle(osim, force, builder);
     }
@@ -288,18 +360,18 @@ OsimConversion convertOsimModel(const OsimModel& osim) {
         if (coupler.enforced)
             builder.addCoupler(convertCoupler(coupler));
         else
-            notImported.push_back(describe("CoordinateCouplerConstraint", coupler.name, coupler.where) +
+            notImported.push_back(describeAt("CoordinateCouplerConstraint", coupler.name, coupler.where) +
                                   ": disabled in the model (the dependent coordinate is free, as in OpenSim)");
     }
     for (const OsimCoordinateActuator& a : osim.coordinateActuators)
-        notImported.push_back(describe("CoordinateActuator", a.name, a.where) + ": actuators are not wires");
+        notImported.push_back(describeAt("CoordinateActuator", a.name, a.where) + ": actuators are not wires");
     for (const OsimPointActuator& a : osim.pointActuators)
-        notImported.push_back(describe("PointActuator", a.name, a.where) + ": actuators are not wires");
+        notImported.push_back(describeAt("PointActuator", a.name, a.where) + ": actuators are not wires");
     for (const OsimTorqueActuator& a : osim.torqueActuators)
-        notImported.push_back(describe("TorqueActuator", a.name, a.where) + ": actuators are not wires");
+        notImported.push_back(describeAt("TorqueActuator", a.name, a.where) + ": actuators are not wires");
     for (const OsimUnsupported& u : osim.unsupported)
-        notImported.push_back(describe(u.type, u.name, u.where) + ": not read from the .osim file");
-    return {builder.build(), std::move(notImported)};
+        notImported.push_back(describeAt(u.type, u.name, u.where) + ": not read from the .osim file");
+    return {builder.build(), std::move(notImported), std::move(warnings)};
 }
 
 }  // namespace sinew

@@ -241,8 +241,9 @@ void writeStorageFile(const StorageTable& table, OutputFileSet& set, const std::
     out << '\n' << std::setprecision(17);
     for (std::size_t i = 0; i < table.rows.size(); ++i) {
         out << table.times[i];
+        if (table.decimals >= 0) out << std::fixed << std::setprecision(table.decimals);
         for (double value : table.rows[i]) out << '\t' << value;
-        out << '\n';
+        out << std::defaultfloat << std::setprecision(17) << '\n';
     }
 }
 

@@ -23,7 +23,7 @@ public:
     Model read(const YAML::Node& root) {
         if (!root.IsMap()) fail(root, "a model file is a mapping with keys sinew_model, name, links, joints, ...");
         requireKeys(root, "model", {"sinew_model", "name", "gravity", "links", "joints", "virtual_links", "loops", "couplers",
-                                    "wrap_objects", "wires"});
+                                    "wrap_objects", "wires", "contacts"});
         const YAML::Node version = root["sinew_model"];
         if (!version) fail(root, "missing 'sinew_model: " + std::to_string(kModelFormatVersion) + "' (format version)");
         if (readInt(version, "sinew_model") != kModelFormatVersion)
@@ -38,6 +38,7 @@ public:
         for (const YAML::Node& node : sequence(root, "couplers")) builder.addCoupler(readCoupler(node));
         for (const YAML::Node& node : sequence(root, "wrap_objects")) builder.addWrapObject(readWrapObject(node));
         for (const YAML::Node& node : sequence(root, "wires")) builder.addWire(readWire(node));
+        for (const YAML::Node& node : sequence(root, "contacts")) builder.addContact(readContact(node));
         return builder.build();
     }
 
@@ -201,6 +202,22 @@ private:
         loop.linkB = readString(field(node, "link_b", owner), "link_b");
         loop.p_B = readVector3(field(node, "point_b", owner), "point_b");
         return loop;
+    }
+
+    // A foot: the link, its sole polygon (vertices in the link frame) and the friction coefficient.
+    ContactSpec readContact(const YAML::Node& node) const {
+        requireKeys(node, "contact", {"name", "link", "sole", "friction"});
+        ContactSpec contact;
+        contact.where = where(node);
+        contact.name = readString(field(node, "name", "contact"), "name");
+        const std::string owner = "contact '" + contact.name + "'";
+        contact.link = readString(field(node, "link", owner), "link");
+        const YAML::Node sole = field(node, "sole", owner);
+        if (!sole.IsSequence() || sole.size() == 0)
+            fail(sole, owner + ": field 'sole' must be a list of vertices [x, y, z] (m, in the link frame)");
+        for (const YAML::Node& vertex : sole) contact.sole_B.push_back(readVector3(vertex, "sole"));
+        if (node["friction"]) contact.friction = readNumber(node["friction"], "friction");
+        return contact;
     }
 
     // OpenSim's CoordinateCouplerConstraint: dependent = scale_factor * function(independent).

@@ -129,17 +129,7 @@ Eigen::Vector3d rotationVector(const Eigen::VectorXd& q, int start) {
     return aa.angle() * aa.axis();
 }
 
-}  // namespace
-
-std::string writeModelText(const Model& model) {
-    const Eigen::VectorXd& q0 = model.getDefaultQ();
-    YAML::Emitter out;
-    out.SetDoublePrecision(17);
-    out << YAML::BeginMap << YAML::Key << "sinew_model" << YAML::Value << kModelFormatVersion;
-    out << YAML::Key << "name" << YAML::Value << model.getName();
-    out << YAML::Key << "gravity" << YAML::Value;
-    emitVector(out, model.getGravity());
-
+void emitLinks(YAML::Emitter& out, const Model& model) {
     out << YAML::Key << "links" << YAML::Value << YAML::BeginSeq;
     for (const Link& link : model.getLinks()) {
         if (link.isVirtual) continue;
@@ -151,47 +141,54 @@ std::string writeModelText(const Model& model) {
             << I(0, 1) << I(0, 2) << I(1, 2) << YAML::EndSeq << YAML::EndMap;
     }
     out << YAML::EndSeq;
+}
 
-    out << YAML::Key << "joints" << YAML::Value << YAML::BeginSeq;
-    for (int i = 0; i < model.getNumLinks(); ++i) {
-        if (model.getLink(i).isVirtual) continue;
-        const Joint& joint = model.getJoint(i);
-        out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << joint.name << YAML::Key << "type" << YAML::Value
-            << toString(joint.type) << YAML::Key << "parent" << YAML::Value << linkName(model, joint.parent)
-            << YAML::Key << "child" << YAML::Value << model.getLink(i).name << YAML::Key << "parent_point" << YAML::Value;
-        emitVector(out, joint.p_PF);
-        out << YAML::Key << "child_point" << YAML::Value;
-        emitVector(out, joint.p_BM);
-        switch (joint.type) {
-            case JointType::Pin:
-                out << YAML::Key << "axis" << YAML::Value;
-                emitVector(out, joint.R_PF.col(2));
-                out << YAML::Key << "initial_angle" << YAML::Value << q0[joint.qStart];
-                break;
-            case JointType::Free:
-                out << YAML::Key << "initial_position" << YAML::Value;
-                emitVector(out, q0.segment<3>(joint.qStart + 4));
-                [[fallthrough]];
-            case JointType::Ball:
-                out << YAML::Key << "initial_rotation" << YAML::Value;
-                emitVector(out, rotationVector(q0, joint.qStart));
-                break;
-            case JointType::Weld:
-            case JointType::Custom: break;
-        }
-        if (joint.type == JointType::Weld || joint.type == JointType::Custom) {
-            if (!joint.R_PF.isIdentity(0)) {
-                out << YAML::Key << "parent_orientation" << YAML::Value;
-                emitRotation(out, joint.R_PF);
-            }
-            if (!joint.R_BM.isIdentity(0)) {
-                out << YAML::Key << "child_orientation" << YAML::Value;
-                emitRotation(out, joint.R_BM);
-            }
-        }
-        if (joint.type == JointType::Custom) emitCustomJoint(out, model, joint);
-        out << YAML::EndMap;
+// The joint of link i: its frames, its initial pose from the default q, and a custom joint's axes.
+void emitJoint(YAML::Emitter& out, const Model& model, int i) {
+    const Eigen::VectorXd& q0 = model.getDefaultQ();
+    const Joint& joint = model.getJoint(i);
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << joint.name << YAML::Key << "type" << YAML::Value
+        << toString(joint.type) << YAML::Key << "parent" << YAML::Value << linkName(model, joint.parent)
+        << YAML::Key << "child" << YAML::Value << model.getLink(i).name << YAML::Key << "parent_point" << YAML::Value;
+    emitVector(out, joint.p_PF);
+    out << YAML::Key << "child_point" << YAML::Value;
+    emitVector(out, joint.p_BM);
+    switch (joint.type) {
+        case JointType::Pin:
+            out << YAML::Key << "axis" << YAML::Value;
+            emitVector(out, joint.R_PF.col(2));
+            out << YAML::Key << "initial_angle" << YAML::Value << q0[joint.qStart];
+            break;
+        case JointType::Free:
+            out << YAML::Key << "initial_position" << YAML::Value;
+            emitVector(out, q0.segment<3>(joint.qStart + 4));
+            [[fallthrough]];
+        case JointType::Ball:
+            out << YAML::Key << "initial_rotation" << YAML::Value;
+            emitVector(out, rotationVector(q0, joint.qStart));
+            break;
+        case JointType::Weld:
+        case JointType::Custom: break;
     }
+    if (joint.type == JointType::Weld || joint.type == JointType::Custom) {
+        if (!joint.R_PF.isIdentity(0)) {
+            out << YAML::Key << "parent_orientation" << YAML::Value;
+            emitRotation(out, joint.R_PF);
+        }
+        if (!joint.R_BM.isIdentity(0)) {
+            out << YAML::Key << "child_orientation" << YAML::Value;
+            emitRotation(out, joint.R_BM);
+        }
+    }
+    if (joint.type == JointType::Custom) emitCustomJoint(out, model, joint);
+    out << YAML::EndMap;
+}
+
+// Joints, virtual links (a free joint each, implied) and loops.
+void emitTopology(YAML::Emitter& out, const Model& model) {
+    out << YAML::Key << "joints" << YAML::Value << YAML::BeginSeq;
+    for (int i = 0; i < model.getNumLinks(); ++i)
+        if (!model.getLink(i).isVirtual) emitJoint(out, model, i);
     out << YAML::EndSeq;
 
     out << YAML::Key << "virtual_links" << YAML::Value << YAML::BeginSeq;
@@ -199,7 +196,7 @@ std::string writeModelText(const Model& model) {
         if (!model.getLink(i).isVirtual) continue;
         out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << model.getLink(i).name << YAML::Key
             << "initial_position" << YAML::Value;
-        emitVector(out, q0.segment<3>(model.getJoint(i).qStart + 4));
+        emitVector(out, model.getDefaultQ().segment<3>(model.getJoint(i).qStart + 4));
         out << YAML::EndMap;
     }
     out << YAML::EndSeq;
@@ -214,64 +211,97 @@ std::string writeModelText(const Model& model) {
         out << YAML::EndMap;
     }
     out << YAML::EndSeq;
+}
 
-    if (model.getNumCouplers() > 0) {
-        const std::vector<std::string> coordinates = getCoordinateNames(model);
-        out << YAML::Key << "couplers" << YAML::Value << YAML::BeginSeq;
-        for (const CoordinateCoupler& c : model.getCouplers()) {
-            out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << c.name << YAML::Key
-                << "dependent" << YAML::Value << coordinates[static_cast<std::size_t>(c.dependentQ)] << YAML::Key
-                << "independent" << YAML::Value << coordinates[static_cast<std::size_t>(c.independentQ)] << YAML::Key
-                << "function" << YAML::Value;
-            emitFunction(out, c.function);
-            if (c.scaleFactor != 1) out << YAML::Key << "scale_factor" << YAML::Value << c.scaleFactor;
-            out << YAML::EndMap;
-        }
+void emitCouplers(YAML::Emitter& out, const Model& model) {
+    if (model.getNumCouplers() == 0) return;
+    const std::vector<std::string> coordinates = getCoordinateNames(model);
+    out << YAML::Key << "couplers" << YAML::Value << YAML::BeginSeq;
+    for (const CoordinateCoupler& c : model.getCouplers()) {
+        out << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << c.name << YAML::Key
+            << "dependent" << YAML::Value << coordinates[static_cast<std::size_t>(c.dependentQ)] << YAML::Key
+            << "independent" << YAML::Value << coordinates[static_cast<std::size_t>(c.independentQ)] << YAML::Key
+            << "function" << YAML::Value;
+        emitFunction(out, c.function);
+        if (c.scaleFactor != 1) out << YAML::Key << "scale_factor" << YAML::Value << c.scaleFactor;
+        out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+}
+
+void emitWireWrap(YAML::Emitter& out, const Model& model, const WireWrap& wrap) {
+    const WrapObject& object = model.getWrapObjects()[static_cast<std::size_t>(wrap.object)];
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "object" << YAML::Value << object.name << YAML::Key << "range"
+        << YAML::Value << YAML::Flow << YAML::BeginSeq << wrap.firstPoint << wrap.lastPoint << YAML::EndSeq
+        << YAML::Key << "method" << YAML::Value << toString(wrap.method);
+    if (wrap.hasSideSite) {
+        out << YAML::Key << "side_site" << YAML::Value;
+        emitVector(out, wrap.sideSite_B);
+        if (wrap.sideSiteLink != object.link)
+            out << YAML::Key << "side_site_link" << YAML::Value << linkName(model, wrap.sideSiteLink);
+    }
+    out << YAML::EndMap;
+}
+
+void emitWire(YAML::Emitter& out, const Model& model, const Wire& wire) {
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << wire.name << YAML::Key << "kind" << YAML::Value
+        << toString(wire.kind) << YAML::Key << "points" << YAML::Value << YAML::BeginSeq;
+    for (int k = 0; k < wire.numPoints; ++k) emitWirePoint(out, model, wire, k);
+    out << YAML::EndSeq;
+    if (!wire.wraps.empty()) {
+        out << YAML::Key << "wraps" << YAML::Value << YAML::BeginSeq;
+        for (const WireWrap& wrap : wire.wraps) emitWireWrap(out, model, wrap);
         out << YAML::EndSeq;
     }
+    out << YAML::Key << "force_law" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "type" << YAML::Value
+        << wire.lawSpec.type;
+    for (const auto& [name, values] : wire.lawSpec.parameters.getAll()) {
+        out << YAML::Key << name << YAML::Value;
+        if (values.size() == 1) {
+            out << values[0];
+        } else {
+            out << YAML::Flow << YAML::BeginSeq;
+            for (double v : values) out << v;
+            out << YAML::EndSeq;
+        }
+    }
+    out << YAML::EndMap << YAML::EndMap;
+}
 
+// Written only when the model names feet, so models without them keep their files byte for byte.
+void emitContacts(YAML::Emitter& out, const Model& model) {
+    if (model.getContacts().empty()) return;
+    out << YAML::Key << "contacts" << YAML::Value << YAML::BeginSeq;
+    for (const Contact& contact : model.getContacts()) {
+        out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << contact.name << YAML::Key << "link" << YAML::Value
+            << linkName(model, contact.link) << YAML::Key << "friction" << YAML::Value << contact.friction << YAML::Key
+            << "sole" << YAML::Value << YAML::BeginSeq;
+        for (const Eigen::Vector3d& vertex : contact.sole_B) emitVector(out, vertex);
+        out << YAML::EndSeq << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+}
+
+}  // namespace
+
+std::string writeModelText(const Model& model) {
+    YAML::Emitter out;
+    out.SetDoublePrecision(17);
+    out << YAML::BeginMap << YAML::Key << "sinew_model" << YAML::Value << kModelFormatVersion;
+    out << YAML::Key << "name" << YAML::Value << model.getName();
+    out << YAML::Key << "gravity" << YAML::Value;
+    emitVector(out, model.getGravity());
+    emitLinks(out, model);
+    emitTopology(out, model);
+    emitCouplers(out, model);
     out << YAML::Key << "wrap_objects" << YAML::Value << YAML::BeginSeq;
     for (const WrapObject& object : model.getWrapObjects()) emitWrapObject(out, model, object);
     out << YAML::EndSeq;
-
     out << YAML::Key << "wires" << YAML::Value << YAML::BeginSeq;
-    for (const Wire& wire : model.getWires()) {
-        out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << wire.name << YAML::Key << "kind" << YAML::Value
-            << toString(wire.kind) << YAML::Key << "points" << YAML::Value << YAML::BeginSeq;
-        for (int k = 0; k < wire.numPoints; ++k) emitWirePoint(out, model, wire, k);
-        out << YAML::EndSeq;
-        if (!wire.wraps.empty()) {
-            out << YAML::Key << "wraps" << YAML::Value << YAML::BeginSeq;
-            for (const WireWrap& wrap : wire.wraps) {
-                const WrapObject& object = model.getWrapObjects()[static_cast<std::size_t>(wrap.object)];
-                out << YAML::Flow << YAML::BeginMap << YAML::Key << "object" << YAML::Value << object.name << YAML::Key << "range"
-                    << YAML::Value << YAML::Flow << YAML::BeginSeq << wrap.firstPoint << wrap.lastPoint << YAML::EndSeq
-                    << YAML::Key << "method" << YAML::Value << toString(wrap.method);
-                if (wrap.hasSideSite) {
-                    out << YAML::Key << "side_site" << YAML::Value;
-                    emitVector(out, wrap.sideSite_B);
-                    if (wrap.sideSiteLink != object.link)
-                        out << YAML::Key << "side_site_link" << YAML::Value << linkName(model, wrap.sideSiteLink);
-                }
-                out << YAML::EndMap;
-            }
-            out << YAML::EndSeq;
-        }
-        out << YAML::Key << "force_law" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key
-            << "type" << YAML::Value << wire.lawSpec.type;
-        for (const auto& [name, values] : wire.lawSpec.parameters.getAll()) {
-            out << YAML::Key << name << YAML::Value;
-            if (values.size() == 1) {
-                out << values[0];
-            } else {
-                out << YAML::Flow << YAML::BeginSeq;
-                for (double v : values) out << v;
-                out << YAML::EndSeq;
-            }
-        }
-        out << YAML::EndMap << YAML::EndMap;
-    }
-    out << YAML::EndSeq << YAML::EndMap;
+    for (const Wire& wire : model.getWires()) emitWire(out, model, wire);
+    out << YAML::EndSeq;
+    emitContacts(out, model);
+    out << YAML::EndMap;
     return std::string(out.c_str()) + "\n";
 }
 

@@ -7,6 +7,7 @@
 
 #include "sinew/core/error.hpp"
 #include "sinew/core/kinematics.hpp"
+#include "sinew/core/wire_path_samples.hpp"
 
 namespace sinew {
 namespace {
@@ -15,6 +16,8 @@ namespace {
 constexpr double kMarkerRadius = 0.02;  // m
 // A bone's share of its limb's radius (the rest is flesh that the wires are).
 constexpr double kBoneFraction = 0.4;
+// A wrap's arc is drawn as chords of at most 5 degrees: within 0.1% of the radius of the surface.
+constexpr double kWrapStepAngle = M_PI / 36;  // rad
 
 // Smallest principal moment of inertia about the centre of mass (kg m^2), 0 for a massless link.
 double calcSmallestMoment(const Link& link) {
@@ -75,15 +78,10 @@ double findRestLength(const Wire& wire) {
 bool isShadedByStrain(const Wire& wire) { return wire.kind == WireKind::Ligament && findRestLength(wire) > 0; }
 
 void getWirePath_G(const Model& model, const Data& data, int w, std::vector<Eigen::Vector3d>& path_G) {
-    const Wire& wire = model.getWire(w);
+    std::vector<WirePathSample> samples;
+    calcWirePathSamples(model, data, w, kWrapStepAngle, samples);
     path_G.clear();
-    if (wire.isPolyline()) {
-        for (int i = 0; i < wire.numPoints; ++i) path_G.push_back(data.p_GP[static_cast<std::size_t>(wire.firstPoint + i)]);
-        return;
-    }
-    const int start = data.wirePathStart[static_cast<std::size_t>(w)];
-    for (int i = 0; i < data.wirePathSize[static_cast<std::size_t>(w)]; ++i)
-        path_G.push_back(data.wirePath[static_cast<std::size_t>(start + i)].p_G);
+    for (const WirePathSample& sample : samples) path_G.push_back(sample.p_G);
 }
 
 BodyFrame calcBodyFrame(const Model& model, const Data& data, const std::vector<BoneCapsule>& capsules,

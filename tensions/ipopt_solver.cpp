@@ -176,7 +176,8 @@ struct IpoptSolver::Backend {
     DistributionProblem quadratic;  // for the KKT residuals
 };
 
-IpoptSolver::IpoptSolver(IpoptSolverOptions options) : backend_(std::make_unique<Backend>()) {
+IpoptSolver::IpoptSolver(IpoptSolverOptions options)
+    : backend_(std::make_unique<Backend>()), exponent_(options.exponent) {
     Ipopt::OptionsList& list = *backend_->app->Options();
     list.SetNumericValue("tol", options.tolerance);
     list.SetIntegerValue("max_iter", options.maxIterations);

@@ -5,39 +5,33 @@
 #include <vector>
 
 #include "sinew/core/error.hpp"
-#include "sinew/tensions/infeasible_frame.hpp"
 
 namespace sinew {
 
-StaticOptimization::StaticOptimization(StaticOptimizationSettings settings, ActiveSetOptions options)
-    : settings_(std::move(settings)), solver_(options), infeasibilityTolerance_(options.infeasibilityTolerance) {
-    const Eigen::Index numWires = settings_.maxIsometricForce.size();
-    if (settings_.minActivation.size() == 0) settings_.minActivation.setZero(numWires);
-    if (settings_.maxActivation.size() == 0) settings_.maxActivation.setOnes(numWires);
-    if (!(settings_.activationExponent >= 1) || !std::isfinite(settings_.activationExponent))
-        throw Error("static optimization: activation exponent " + std::to_string(settings_.activationExponent) +
-                    ", expected a finite value >= 1 (below 1 the sum of activations^exponent is not convex)");
-    if (settings_.activationExponent != 2) ipopt_ = std::make_unique<IpoptSolver>();
-    if (settings_.minActivation.size() != numWires || settings_.maxActivation.size() != numWires)
-        throw Error("static optimization: " + std::to_string(settings_.minActivation.size()) + " minimum and " +
-                    std::to_string(settings_.maxActivation.size()) + " maximum activations for " +
+void validateStaticOptimizationSettings(StaticOptimizationSettings& settings) {
+    const Eigen::Index numWires = settings.maxIsometricForce.size();
+    if (settings.minActivation.size() == 0) settings.minActivation.setZero(numWires);
+    if (settings.maxActivation.size() == 0) settings.maxActivation.setOnes(numWires);
+    if (settings.minActivation.size() != numWires || settings.maxActivation.size() != numWires)
+        throw Error("static optimization: " + std::to_string(settings.minActivation.size()) + " minimum and " +
+                    std::to_string(settings.maxActivation.size()) + " maximum activations for " +
                     std::to_string(numWires) + " wires");
     for (Eigen::Index w = 0; w < numWires; ++w) {
         const std::string at = "wire " + std::to_string(w);
-        if (!(settings_.maxIsometricForce[w] > 0) || !std::isfinite(settings_.maxIsometricForce[w]))
+        if (!(settings.maxIsometricForce[w] > 0) || !std::isfinite(settings.maxIsometricForce[w]))
             throw Error("static optimization: " + at + " has max isometric force " +
-                        std::to_string(settings_.maxIsometricForce[w]) + ", expected a finite value > 0");
-        if (!(settings_.minActivation[w] <= settings_.maxActivation[w]))
+                        std::to_string(settings.maxIsometricForce[w]) + ", expected a finite value > 0");
+        if (!(settings.minActivation[w] <= settings.maxActivation[w]))
             throw Error("static optimization: " + at + " has activation bounds [" +
-                        std::to_string(settings_.minActivation[w]) + ", " + std::to_string(settings_.maxActivation[w]) +
+                        std::to_string(settings.minActivation[w]) + ", " + std::to_string(settings.maxActivation[w]) +
                         "], expected min <= max");
     }
-    for (const ReserveActuator& reserve : settings_.reserves)
-        if (!(reserve.optimalForce > 0) || !std::isfinite(reserve.optimalForce) || !(reserve.minControl <= reserve.maxControl))
-            throw Error("static optimization: reserve '" + reserve.name + "' has optimal force " +
-                        std::to_string(reserve.optimalForce) + " and control bounds [" +
-                        std::to_string(reserve.minControl) + ", " + std::to_string(reserve.maxControl) +
-                        "], expected a finite optimal force > 0 and min <= max");
+    for (const ReserveActuator& reserve : settings.reserves) checkReserveLimits(reserve);
+}
+
+StaticOptimization::StaticOptimization(StaticOptimizationSettings settings, ActiveSetOptions options)
+    : settings_(std::move(settings)), solver_(settings_.activationExponent, options) {
+    validateStaticOptimizationSettings(settings_);
 }
 
 bool StaticOptimization::hasPatternOf(const DistributionProblem& wireProblem, bool denseReserves) const {
@@ -138,16 +132,7 @@ void StaticOptimization::solve(const DistributionProblem& wireProblem, const Eig
     problem_.tolerance.setZero(rows);
     problem_.isEquality.assign(static_cast<std::size_t>(rows), true);
 
-    if (!ipopt_) {
-        solver_.solve(problem_, result.distribution);
-    } else {
-        ipopt_->solve(problem_, exponent, result.distribution);
-        const DistributionSolve solveLeastSquares = [&](const DistributionProblem& relaxed, DistributionResult& answer) {
-            ipopt_->solve(relaxed, exponent, answer);
-        };
-        if (result.distribution.status != DistributionStatus::Optimal)
-            reportInfeasibleFrame(problem_, exponent, infeasibilityTolerance_, solveLeastSquares, result.distribution);
-    }
+    solver_.solve(problem_, result.distribution);
     const Eigen::VectorXd& x = result.distribution.x;
     result.activation = x.head(numWires);
     result.tension = result.activation.cwiseProduct(settings_.maxIsometricForce).cwiseProduct(forceMultiplier);

@@ -20,11 +20,11 @@ void addPathToRoot(const Model& model, int link, std::vector<bool>& rows) {
     }
 }
 
-// Adds force_G applied at the point p_B of `link` to Data::F_G (moment about the link's origin); nothing on
-// ground.
+// Adds force_G applied at the point p_B of `link` to Data::scratchF_G (moment about the link's origin);
+// nothing on ground.
 void addPointForce(Data& data, int link, const Eigen::Vector3d& p_B, const Eigen::Vector3d& force_G) {
     if (link == kGround) return;
-    SpatialVector& F = data.F_G[static_cast<std::size_t>(link)];
+    SpatialVector& F = data.scratchF_G[static_cast<std::size_t>(link)];
     F.head<3>() += (data.R_GB[static_cast<std::size_t>(link)] * p_B).cross(force_G);
     F.tail<3>() += force_G;
 }
@@ -41,8 +41,9 @@ void dropRoundoff(Eigen::SparseMatrix<double>& A, int j) {
 
 }  // namespace
 
-WireProblemBuilder::WireProblemBuilder(const Model& model, Eigen::VectorXd maxTension, WireProblemOptions options)
-    : model_(model), maxTension_(std::move(maxTension)), options_(options) {
+WireProblemBuilder::WireProblemBuilder(const Model& model, Eigen::VectorXd maxTension, WireProblemOptions options,
+                                       std::vector<std::shared_ptr<ProblemColumns>> columns)
+    : model_(model), maxTension_(std::move(maxTension)), options_(options), columns_(std::move(columns)) {
     if (maxTension_.size() != model.getNumWires())
         throw Error("wire problem: " + std::to_string(maxTension_.size()) + " maximum tensions for " +
                     std::to_string(model.getNumWires()) + " wires");
@@ -65,13 +66,19 @@ WireProblemBuilder::WireProblemBuilder(const Model& model, Eigen::VectorXd maxTe
         }
         addColumn(w);
     }
+    blockStart_.assign(1, numWires);
+    for (const std::shared_ptr<ProblemColumns>& block : columns_) {
+        block->addPattern(blockStart_.back(), entries);
+        blockStart_.push_back(blockStart_.back() + block->count());
+    }
+    const int loopStart = getBlocksEnd();
     for (int l = 0; l < model.getNumLoops(); ++l) {
         rows.assign(static_cast<std::size_t>(nu), false);
         addPathToRoot(model, model.getLoop(l).linkA, rows);
         addPathToRoot(model, model.getLoop(l).linkB, rows);
-        for (int c = 0; c < 3; ++c) addColumn(numWires + 3 * l + c);
+        for (int c = 0; c < 3; ++c) addColumn(loopStart + 3 * l + c);
     }
-    pattern_.resize(nu, numWires + 3 * model.getNumLoops());
+    pattern_.resize(nu, loopStart + 3 * model.getNumLoops());
     pattern_.setFromTriplets(entries.begin(), entries.end());
     pattern_.makeCompressed();
 }
@@ -82,10 +89,19 @@ DistributionProblem WireProblemBuilder::makeProblem() const {
     problem.A = pattern_;
     problem.A.coeffs().setZero();
     problem.numFree = 3 * model_.getNumLoops();
-    problem.lower.setZero(numWires);
-    problem.upper = maxTension_;
-    problem.cost.setConstant(numWires, options_.wireCost);
-    problem.weight.setOnes(numWires);
+    const int numBounded = getBlocksEnd();
+    problem.lower.setZero(numBounded);
+    problem.upper.setZero(numBounded);
+    problem.upper.head(numWires) = maxTension_;
+    problem.cost.setConstant(numBounded, options_.wireCost);
+    problem.weight.setOnes(numBounded);
+    for (int b = 0; b < getNumBlocks(); ++b) {
+        const int start = getBlockStart(b), size = columns_[static_cast<std::size_t>(b)]->count();
+        columns_[static_cast<std::size_t>(b)]->setVariables(1.0, problem.lower.segment(start, size),
+                                                            problem.upper.segment(start, size),
+                                                            problem.cost.segment(start, size),
+                                                            problem.weight.segment(start, size));
+    }
     problem.target.setZero(nu);
     problem.tolerance.setConstant(nu, options_.torqueTolerance);
     problem.isEquality.assign(static_cast<std::size_t>(nu), false);
@@ -114,20 +130,29 @@ void WireProblemBuilder::update(Data& data, const Eigen::MatrixXd& J, const Eige
         meanSquaredArm += problem.A.col(w).squaredNorm();
     }
     meanSquaredArm = numWires ? meanSquaredArm / numWires : 0;
-    problem.weight.setConstant(numWires, options_.regularization * (meanSquaredArm > 0 ? meanSquaredArm : 1.0));
+    const double wireWeight = options_.regularization * (meanSquaredArm > 0 ? meanSquaredArm : 1.0);
+    problem.weight.head(numWires).setConstant(wireWeight);
+    for (int b = 0; b < getNumBlocks(); ++b) {
+        ProblemColumns& block = *columns_[static_cast<std::size_t>(b)];
+        const int start = getBlockStart(b), size = block.count();
+        block.update(data, start, problem.A);
+        block.setVariables(wireWeight, problem.lower.segment(start, size), problem.upper.segment(start, size),
+                           problem.cost.segment(start, size), problem.weight.segment(start, size));
+    }
     // Loop columns: the generalized forces of a unit force e_c on link B at its loop point and -e_c on link A
     // at its own, i.e. the transposed loop-constraint Jacobian.
+    const int loopStart = getBlocksEnd();
     Eigen::VectorXd column(nu);
     for (int l = 0; l < model_.getNumLoops(); ++l) {
         const Loop& loop = model_.getLoop(l);
         for (int c = 0; c < 3; ++c) {
-            for (SpatialVector& F : data.F_G) F.setZero();
+            for (SpatialVector& F : data.scratchF_G) F.setZero();
             addPointForce(data, loop.linkB, loop.p_B, Eigen::Vector3d::Unit(c));
             addPointForce(data, loop.linkA, loop.p_A, -Eigen::Vector3d::Unit(c));
             calcGeneralizedForcesFromLinkForces(model_, data, column);
-            for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, numWires + 3 * l + c); it; ++it)
-                it.valueRef() = column[it.row()];
-            dropRoundoff(problem.A, numWires + 3 * l + c);
+            const int j = loopStart + 3 * l + c;
+            for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, j); it; ++it) it.valueRef() = column[it.row()];
+            dropRoundoff(problem.A, j);
         }
     }
     problem.target = tau;

@@ -9,6 +9,7 @@
 #include "sinew/core/inverse_dynamics.hpp"
 #include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/measured_loads.hpp"
+#include "sinew/tools/motion_frames.hpp"
 #include "sinew/io/model_loading.hpp"
 
 namespace sinew {
@@ -34,29 +35,24 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
     result.name = "Inverse Dynamics Generalized Forces";
     for (const Coordinate& c : modelCoordinates) result.columns.push_back(getForceColumnName(c));
     Data data(model);
-    std::vector<SpatialVector> linkForces(static_cast<std::size_t>(model.getNumLinks()));
-    const Eigen::Index n = samples.q.cols();
-    Eigen::VectorXd q(n), u(n), udot(n), tau(model.getNumU());
-    const int frames = static_cast<int>(trajectory.times.size());
-    for (int i = 0; i < frames; ++i) {
-        const double t = trajectory.times[i];
-        q = trajectory.q.row(i).transpose();
-        u = trajectory.qdot.row(i).transpose();
-        udot = trajectory.qddot.row(i).transpose();
-        calcAppliedLinkForces(model, measured ? &*measured : nullptr, data, t, q, linkForces);
-        calcInverseDynamics(model, data, q, u, udot, linkForces, tau);
-        if (!tau.allFinite()) {
-            Eigen::Index k = 0;
-            while (std::isfinite(tau[k])) ++k;
-            throw Error("inverse dynamics at t = " + std::to_string(t) + " s (frame " + std::to_string(i + 1) +
-                        "): the generalized force of coordinate '" + modelCoordinates[static_cast<std::size_t>(k)].name +
-                        "' is not finite (q " + std::to_string(q[k]) + ", speed " + std::to_string(u[k]) +
-                        ", acceleration " + std::to_string(udot[k]) + "; check the motion and external loads there)");
-        }
-        result.times.push_back(t);
-        result.rows.emplace_back(tau.data(), tau.data() + tau.size());
-        if (options.onFrame) options.onFrame(i + 1, frames);
-    }
+    Eigen::VectorXd tau(model.getNumU());
+    forEachMotionFrame(
+        model, trajectory, measured ? &*measured : nullptr,
+        [&](const MotionFrame& frame) {
+            calcInverseDynamics(model, data, frame.q, frame.u, frame.udot, frame.appliedLinkForces, tau);
+            if (!tau.allFinite()) {
+                Eigen::Index k = 0;
+                while (std::isfinite(tau[k])) ++k;
+                throw Error("inverse dynamics at t = " + std::to_string(frame.time) + " s (frame " +
+                            std::to_string(frame.index + 1) + "): the generalized force of coordinate '" +
+                            modelCoordinates[static_cast<std::size_t>(k)].name + "' is not finite (q " +
+                            std::to_string(frame.q[k]) + ", speed " + std::to_string(frame.u[k]) + ", acceleration " +
+                            std::to_string(frame.udot[k]) + "; check the motion and external loads there)");
+            }
+            result.times.push_back(frame.time);
+            result.rows.emplace_back(tau.data(), tau.data() + tau.size());
+        },
+        options.onFrame);
     return result;
 }
 

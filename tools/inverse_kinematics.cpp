@@ -1,6 +1,8 @@
 #include "sinew/tools/inverse_kinematics.hpp"
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -17,6 +19,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // otherwise, since every trial is closed again to roundoff before it is judged.
 constexpr double kLoopMerit = 1;
 constexpr int kActiveSetPasses = 8;
+constexpr int kGaussNewtonIterations = 10;
 constexpr int kLoopClosingIterations = 6;
 constexpr double kClosedGap = 1e-15;  // m: roundoff on a body's size
 
@@ -27,12 +30,14 @@ bool hasScalarSpeed(const Joint& joint) { return joint.nq == joint.nu; }
 InverseKinematicsSolver::InverseKinematicsSolver(const Model& model, std::vector<Marker> markers,
                                                  std::vector<MarkerTask> markerTasks,
                                                  std::vector<CoordinateTask> coordinateTasks,
-                                                 InverseKinematicsOptions options)
+                                                 InverseKinematicsOptions options,
+                                                 std::vector<OrientationTask> orientationTasks)
     : model_(model),
       markers_(std::move(markers)),
       markerTasks_(std::move(markerTasks)),
       coordinateTasks_(std::move(coordinateTasks)),
       options_(options),
+      orientationTasks_(std::move(orientationTasks)),
       data_(model) {
     auto checkWeight = [](double weight, const std::string& what) {
         if (!std::isfinite(weight) || weight < 0)
@@ -56,6 +61,12 @@ InverseKinematicsSolver::InverseKinematicsSolver(const Model& model, std::vector
                         joint.name + "'s quaternion; coordinate tasks take pin and custom coordinates");
         taskCoordinate_.push_back(q);
     }
+    for (const OrientationTask& task : orientationTasks_) {
+        checkWeight(task.weight, "orientation task on '" + task.link + "'");
+        const int link = model.findLinkIndex(task.link);
+        if (link < 0) throw Error("orientation task: the model has no link '" + task.link + "'");
+        taskLink_.push_back(link);
+    }
     const int nu = model.getNumU();
     freeColumn_.assign(static_cast<std::size_t>(nu), -1);
     couplerOfU_.assign(static_cast<std::size_t>(nu), -1);
@@ -77,12 +88,14 @@ InverseKinematicsSolver::InverseKinematicsSolver(const Model& model, std::vector
         }
     }
     const Eigen::Index rows = 3 * static_cast<Eigen::Index>(markerTasks_.size()) +
-                              static_cast<Eigen::Index>(coordinateTasks_.size());
+                              static_cast<Eigen::Index>(coordinateTasks_.size()) +
+                              3 * static_cast<Eigen::Index>(orientationTasks_.size());
     r_.resize(rows);
     A_.resize(rows, numFree_);
     c_.resize(3 * static_cast<Eigen::Index>(model.getLoops().size()));
     G_.resize(c_.size(), numFree_);
     markerErrors_.resize(static_cast<Eigen::Index>(markerTasks_.size()));
+    orientationErrors_.resize(static_cast<Eigen::Index>(orientationTasks_.size()));
 }
 
 // Adds d(u's effect)/du into `rows` at u's unknown: directly for a free speed, through the coupler's slope
@@ -110,6 +123,46 @@ void InverseKinematicsSolver::addPointJacobian(int link, const Eigen::Vector3d& 
         const JointMotion H_G = calcJointMotion_G(joint, data_, i, p_G);
         for (int k = 0; k < joint.nu; ++k)
             addSpeedColumn(joint.uStart + k, lastQ_, scale * H_G.col(k).tail<3>(), rows);
+    }
+}
+
+void InverseKinematicsSolver::addAngularJacobian(int link, const Eigen::Matrix3d& scale_G, Eigen::Ref<Eigen::MatrixXd> rows) {
+    for (int i = link; i != kGround; i = model_.getJoint(i).parent) {
+        const Joint& joint = model_.getJoint(i);
+        const JointMotion H_G = calcJointMotion_G(joint, data_, i, data_.p_GB[static_cast<std::size_t>(i)]);
+        for (int k = 0; k < joint.nu; ++k)
+            addSpeedColumn(joint.uStart + k, lastQ_, scale_G * H_G.col(k).head<3>(), rows);
+    }
+}
+
+// Rows sqrt(w) theta, theta the rotation vector of R_GF R_target^T (the error, in G), after the marker and
+// coordinate rows. d(theta)/dt = J_l(theta)^-1 w_GB with the left Jacobian of SO(3) (Barfoot, State
+// Estimation for Robotics, eq. 7.82): exact, so that a fit that cannot reach its targets still stops at the
+// true optimum of the cost.
+void InverseKinematicsSolver::evaluateOrientations(const InverseKinematicsTargets& targets, bool withJacobian) {
+    const Eigen::Index first = 3 * static_cast<Eigen::Index>(markerTasks_.size()) +
+                               static_cast<Eigen::Index>(coordinateTasks_.size());
+    for (std::size_t t = 0; t < orientationTasks_.size(); ++t) {
+        const Eigen::Index row = first + 3 * static_cast<Eigen::Index>(t);
+        const Eigen::Matrix3d& R_target = targets.orientations[t];
+        if (!R_target.allFinite()) {
+            r_.segment<3>(row).setZero();
+            orientationErrors_[static_cast<Eigen::Index>(t)] = kNaN;
+            continue;
+        }
+        const std::size_t b = static_cast<std::size_t>(taskLink_[t]);
+        const Eigen::AngleAxisd error(data_.R_GB[b] * orientationTasks_[t].R_BF * R_target.transpose());
+        const Eigen::Vector3d theta = error.angle() * error.axis();
+        const double w = std::sqrt(orientationTasks_[t].weight);
+        r_.segment<3>(row) = w * theta;
+        orientationErrors_[static_cast<Eigen::Index>(t)] = error.angle();
+        if (!withJacobian) continue;
+        const double angle = error.angle();
+        Eigen::Matrix3d skew;
+        skew << 0, -theta.z(), theta.y(), theta.z(), 0, -theta.x(), -theta.y(), theta.x(), 0;
+        const double c = angle < 1e-6 ? 1.0 / 12 : (1 / (angle * angle) - (1 + std::cos(angle)) / (2 * angle * std::sin(angle)));
+        const Eigen::Matrix3d inverseJacobian = Eigen::Matrix3d::Identity() - 0.5 * skew + c * skew * skew;
+        addAngularJacobian(static_cast<int>(b), w * inverseJacobian, A_.middleRows<3>(row));
     }
 }
 
@@ -190,6 +243,7 @@ double InverseKinematicsSolver::evaluate(const InverseKinematicsTargets& targets
         const Joint& joint = model_.getJoint(c.joint);
         addSpeedColumn(joint.uStart + (qi - joint.qStart), q, Eigen::VectorXd::Constant(1, w), A_.middleRows(row, 1));
     }
+    evaluateOrientations(targets, withJacobian);
     fillLoopGaps(c_, withJacobian ? &G_ : nullptr);
     return 0.5 * r_.squaredNorm() + (kLoopMerit + 2 * multipliers_.lpNorm<Eigen::Infinity>()) * c_.norm();
 }
@@ -197,44 +251,77 @@ double InverseKinematicsSolver::evaluate(const InverseKinematicsTargets& targets
 // The linearised step leaves the loops open by its square; closing them again before the step is judged
 // keeps the merit from refusing good steps for that gap (the Maratos effect) and every accepted pose
 // closed. Minimum-norm Gauss-Newton on the gaps alone.
-void InverseKinematicsSolver::closeLoops(const InverseKinematicsTargets& targets, Eigen::VectorXd& q) {
+void InverseKinematicsSolver::closeLoops(Eigen::VectorXd& q) {
     if (c_.size() == 0) return;
     for (int iteration = 0; iteration < kLoopClosingIterations; ++iteration) {
-        evaluate(targets, q, true);
+        // The gaps alone: the tasks are evaluated once the pose is closed.
+        calcPositionKinematics(model_, data_, q);
+        lastQ_ = q;
+        fillLoopGaps(c_, &G_);
         if (c_.lpNorm<Eigen::Infinity>() <= kClosedGap) return;
         q = integrateCoordinates(model_, q, toSpeeds(G_.completeOrthogonalDecomposition().solve(-c_)), 1.0);
         applyCoordinateCouplers(model_, q);
     }
 }
 
+// min 1/2 |r + A d|^2 + 1/2 damping |d|^2 subject to c + G d = 0, with the entries `fixed` given by
+// fixedStep: the KKT system [H G^T; G 0] [d; lambda] = [-A^T r; -c] by its Schur complement on the loops.
+// H (damped, so positive definite) by Cholesky, and the loops' small G H^-1 G^T by a complete orthogonal
+// decomposition, since loops may repeat one another's constraints (rank-deficient G).
+Eigen::VectorXd InverseKinematicsSolver::solveKkt(double damping, const std::vector<bool>& fixed,
+                                                  const Eigen::VectorXd& fixedStep) {
+    const Eigen::Index n = numFree_;
+    H_ = stepHessian_;
+    H_.diagonal().array() += damping;
+    Eigen::VectorXd b = -(A_.transpose() * r_), e = -c_;
+    Eigen::MatrixXd G = G_;
+    for (Eigen::Index j = 0; j < n; ++j) {
+        if (!fixed[static_cast<std::size_t>(j)]) continue;
+        b -= H_.col(j) * fixedStep[j];
+        e -= G.col(j) * fixedStep[j];
+        H_.row(j).setZero();
+        H_.col(j).setZero();
+        H_(j, j) = 1;
+        b[j] = fixedStep[j];
+        G.col(j).setZero();
+    }
+    const Eigen::LLT<Eigen::MatrixXd> cholesky(H_);
+    if (cholesky.info() != Eigen::Success) {
+        // The full Hessian of a fit pulling against its loops need not be positive definite.
+        Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + G.rows(), n + G.rows());
+        K.topLeftCorner(n, n) = H_;
+        K.topRightCorner(n, G.rows()) = G.transpose();
+        K.bottomLeftCorner(G.rows(), n) = G;
+        Eigen::VectorXd rhs(n + G.rows());
+        rhs << b, e;
+        const Eigen::VectorXd solution = K.completeOrthogonalDecomposition().solve(rhs);
+        multipliers_ = solution.tail(G.rows());
+        return solution.head(n);
+    }
+    const Eigen::VectorXd free = cholesky.solve(b);
+    if (G.rows() == 0) return free;
+    const Eigen::MatrixXd HinvGt = cholesky.solve(G.transpose());
+    const Eigen::MatrixXd S = G * HinvGt;
+    multipliers_ = S.completeOrthogonalDecomposition().solve(G * free - e);
+    return free - HinvGt * multipliers_;
+}
+
 Eigen::VectorXd InverseKinematicsSolver::solveStep(double damping, const Eigen::VectorXd& q) {
-    const Eigen::Index n = numFree_, m = c_.size();
+    const Eigen::Index n = numFree_;
     // The bounded unknowns fixed at a bound this pass, and how far that moves them.
     std::vector<bool> fixed(static_cast<std::size_t>(n), false);
     Eigen::VectorXd fixedStep = Eigen::VectorXd::Zero(n);
     Eigen::VectorXd delta(n);
+    if (secondOrder_) {
+        stepHessian_ = hessian_;
+    } else {
+        // A^T A by its lower half, mirrored: half the products of the full one.
+        stepHessian_.setZero(n, n);
+        stepHessian_.selfadjointView<Eigen::Lower>().rankUpdate(A_.transpose());
+        stepHessian_.triangularView<Eigen::StrictlyUpper>() = stepHessian_.transpose();
+    }
     for (int pass = 0; pass < kActiveSetPasses; ++pass) {
-        // min 1/2 |r + A d|^2 + 1/2 damping |d|^2  subject to  c + G d = 0, with the fixed entries of d given.
-        Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + m, n + m);
-        Eigen::VectorXd rhs(n + m);
-        K.topLeftCorner(n, n) = secondOrder_ ? hessian_ : A_.transpose() * A_;
-        K.topLeftCorner(n, n).diagonal().array() += damping;
-        K.topRightCorner(n, m) = G_.transpose();
-        K.bottomLeftCorner(m, n) = G_;
-        rhs.head(n) = -A_.transpose() * r_;
-        rhs.tail(m) = -c_;
-        for (Eigen::Index j = 0; j < n; ++j) {
-            if (!fixed[static_cast<std::size_t>(j)]) continue;
-            rhs -= K.col(j) * fixedStep[j];
-            K.row(j).setZero();
-            K.col(j).setZero();
-            K(j, j) = 1;
-            rhs[j] = fixedStep[j];
-        }
-        // Complete orthogonal decomposition: loops may repeat one another's constraints (rank-deficient G).
-        const Eigen::VectorXd solution = K.completeOrthogonalDecomposition().solve(rhs);
-        delta = solution.head(n);
-        multipliers_ = solution.tail(m);
+        delta = solveKkt(damping, fixed, fixedStep);
         bool changed = false;
         for (const auto& [col, qi] : boundedColumns_) {
             if (fixed[static_cast<std::size_t>(col)]) continue;
@@ -272,10 +359,16 @@ bool InverseKinematicsSolver::isSmallStep(const Eigen::VectorXd& delta) const {
         const double w = std::sqrt(coordinateTasks_[t].weight);
         if (w > 0 && std::abs(moved[first + static_cast<Eigen::Index>(t)]) > options_.accuracy * w) return false;
     }
+    const Eigen::Index orientations = first + static_cast<Eigen::Index>(coordinateTasks_.size());
+    for (std::size_t t = 0; t < orientationTasks_.size(); ++t) {
+        const double w = std::sqrt(orientationTasks_[t].weight);
+        if (w > 0 && moved.segment<3>(orientations + 3 * static_cast<Eigen::Index>(t)).norm() > options_.accuracy * w)
+            return false;
+    }
     return true;
 }
 
-InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTargets& targets, Eigen::VectorXd& q) {
+void InverseKinematicsSolver::checkFrame(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q) const {
     if (targets.markers.cols() != static_cast<Eigen::Index>(markerTasks_.size()) ||
         targets.coordinates.size() != static_cast<Eigen::Index>(coordinateTasks_.size()))
         throw Error("inverse kinematics: the frame has " + std::to_string(targets.markers.cols()) + " markers and " +
@@ -285,12 +378,19 @@ InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTa
         throw Error("inverse kinematics: the starting coordinates must be " + std::to_string(model_.getNumQ()) +
                     " finite values");
     if (!targets.coordinates.allFinite()) throw Error("inverse kinematics: a coordinate task's target is not finite");
+    if (targets.orientations.size() != orientationTasks_.size())
+        throw Error("inverse kinematics: the frame has " + std::to_string(targets.orientations.size()) +
+                    " orientations; the solver's orientation tasks are " + std::to_string(orientationTasks_.size()));
+}
+
+InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTargets& targets, Eigen::VectorXd& q) {
+    checkFrame(targets, q);
     InverseKinematicsReport report;
     applyCoordinateCouplers(model_, q);
     multipliers_.setZero(c_.size());
     secondOrder_ = false;
     double merit = evaluate(targets, q, true);
-    double damping = 1e-6 * (1 + (A_.transpose() * A_).diagonal().maxCoeff());
+    double damping = 1e-6 * (1 + A_.colwise().squaredNorm().maxCoeff());
     const double dampingFloor = 1e-12 * (1 + damping);
     for (report.iterations = 0; report.iterations < options_.maxIterations;) {
         const Eigen::VectorXd delta = solveStep(damping, q);
@@ -302,11 +402,12 @@ InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTa
         const bool small = isSmallStep(delta);
         Eigen::VectorXd trial = integrateCoordinates(model_, q, du, 1.0);
         applyCoordinateCouplers(model_, trial);
-        closeLoops(targets, trial);
-        const double trialMerit = evaluate(targets, trial, false);
+        closeLoops(trial);
+        // With the Jacobian: most trials are taken, and the next step needs it there.
+        const double trialMerit = evaluate(targets, trial, true);
         if (trialMerit <= merit) {
             q = trial;
-            merit = evaluate(targets, q, true);
+            merit = trialMerit;
             if (secondOrder_) calcSecondOrderHessian(targets, q);
             damping = std::max(dampingFloor, damping / 3);
             if (small && c_.lpNorm<Eigen::Infinity>() <= options_.constraintTolerance) {
@@ -316,8 +417,10 @@ InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTa
         } else {
             evaluate(targets, q, true);
             damping *= 4;
-            // Gauss-Newton's model has failed once: from here on, the full Lagrangian Hessian.
-            if (!secondOrder_) {
+            // Gauss-Newton has had its iterations and still refuses steps: it is converging only linearly
+            // (a fit that cannot reach its targets): from here on, the full Lagrangian Hessian. Not at the
+            // first refusal, which far from the fit says only that the damping was too small.
+            if (!secondOrder_ && report.iterations >= kGaussNewtonIterations) {
                 secondOrder_ = true;
                 calcSecondOrderHessian(targets, q);
             }
@@ -328,6 +431,12 @@ InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTa
             }
         }
     }
+    fillReport(report);
+    return report;
+}
+
+// The fit errors at the pose of the last evaluation.
+void InverseKinematicsSolver::fillReport(InverseKinematicsReport& report) const {
     report.markersSeen = markersSeen_;
     report.markerErrors = markerErrors_;
     double sum = 0;
@@ -340,8 +449,15 @@ InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTa
         }
     }
     report.rmsMarkerError = markersSeen_ > 0 ? std::sqrt(sum / markersSeen_) : 0;
+    double angles = 0;
+    for (Eigen::Index t = 0; t < orientationErrors_.size(); ++t) {
+        if (std::isnan(orientationErrors_[t])) continue;
+        ++report.orientationsSeen;
+        angles += orientationErrors_[t] * orientationErrors_[t];
+        report.maxOrientationError = std::max(report.maxOrientationError, orientationErrors_[t]);
+    }
+    report.rmsOrientationError = report.orientationsSeen > 0 ? std::sqrt(angles / report.orientationsSeen) : 0;
     report.constraintViolation = c_.size() > 0 ? c_.lpNorm<Eigen::Infinity>() : 0;
-    return report;
 }
 
 InverseKinematicsMotion solveInverseKinematics(InverseKinematicsSolver& solver, const Eigen::VectorXd& q0,

@@ -18,6 +18,9 @@ namespace {
 
 constexpr double kDegrees = 180 / M_PI;
 constexpr double kTimeTolerance = 1e-9;  // s: a frame at the range's end, written with rounding, is in it
+constexpr double kLeadingOrientationWeight = 1;  // m^2/rad^2, the first frame's coarse solve
+constexpr double kCoarseAccuracy = 1e-3;         // m (rad) of target motion in its last step
+constexpr int kFirstFrameIterations = 2000;
 
 int findMarker(const std::vector<Marker>& markers, const std::string& name) {
     for (std::size_t m = 0; m < markers.size(); ++m)
@@ -59,6 +62,21 @@ CoordinateTarget makeCoordinateTarget(const Model& model, const InverseKinematic
         if (target.times.empty()) throw Error(coordinateFile + ": no rows for coordinate task '" + task.name + "'");
     }
     return target;
+}
+
+// Coarse to fine for the first frame, which starts far from the capture: the segment frames first, at the
+// weight of a joint centre per radian (each mapped link's rotation then follows its own target, nearly
+// independently of the others), from which the requested weights converge to the fit rather than to one of
+// the local minima that centres alone leave between a default pose and a capture's.
+Eigen::VectorXd startFromOrientations(const Model& model, const std::vector<Marker>& markers,
+                                      const std::vector<MarkerTask>& markerTasks, const InverseKinematicsRequest& request,
+                                      const InverseKinematicsTargets& first, Eigen::VectorXd q) {
+    std::vector<OrientationTask> leading = request.orientationTasks;
+    for (OrientationTask& task : leading) task.weight = kLeadingOrientationWeight;
+    InverseKinematicsOptions options;
+    options.accuracy = kCoarseAccuracy;
+    InverseKinematicsSolver(model, markers, markerTasks, {}, options, leading).solve({first.markers, Eigen::VectorXd(), first.orientations}, q);
+    return q;
 }
 
 }  // namespace
@@ -121,6 +139,7 @@ InverseKinematicsResult runInverseKinematics(const Model& model, const std::vect
         frame.coordinates.resize(static_cast<Eigen::Index>(coordinateTasks.size()));
         for (std::size_t c = 0; c < coordinateTasks.size(); ++c)
             frame.coordinates[static_cast<Eigen::Index>(c)] = coordinateTargets[c].at(t);
+        if (!request.orientationTasks.empty()) frame.orientations = request.orientations.at(k);
         targets.push_back(std::move(frame));
         result.times.push_back(t);
     }
@@ -129,8 +148,13 @@ InverseKinematicsResult runInverseKinematics(const Model& model, const std::vect
                     std::to_string(request.endTime) + " s");
     InverseKinematicsOptions options;
     options.accuracy = request.accuracy;
-    InverseKinematicsSolver solver(model, markers, markerTasks, coordinateTasks, options);
-    const Eigen::VectorXd start = alignFreeRoot(model, taskMarkers, targets.front().markers, model.getDefaultQ());
+    InverseKinematicsSolver solver(model, markers, markerTasks, coordinateTasks, options, request.orientationTasks);
+    Eigen::VectorXd start = alignFreeRoot(model, taskMarkers, targets.front().markers, model.getDefaultQ());
+    if (!request.orientationTasks.empty()) start = startFromOrientations(model, markers, markerTasks, request, targets.front(), start);
+    // The first frame, from far, converges with more iterations than a warm frame needs.
+    InverseKinematicsOptions first = options;
+    first.maxIterations = kFirstFrameIterations;
+    InverseKinematicsSolver(model, markers, markerTasks, coordinateTasks, first, request.orientationTasks).solve(targets.front(), start);
     result.motion = solveInverseKinematics(solver, start, targets, onFrame);
     return result;
 }
@@ -193,6 +217,13 @@ StorageTable makeMarkerErrorTable(const InverseKinematicsResult& result) {
     table.name = "Model Marker Errors from IK";
     table.columns = {"total_squared_error", "marker_error_RMS", "marker_error_max", "markers_seen", "iterations",
                      "converged"};
+    // A BVH fit's segment frames: their errors (rad) after OpenSim's columns.
+    const bool withOrientations = std::any_of(result.motion.reports.begin(), result.motion.reports.end(),
+                                              [](const InverseKinematicsReport& r) { return r.orientationsSeen > 0; });
+    if (withOrientations) {
+        table.columns.push_back("orientation_error_RMS");
+        table.columns.push_back("orientation_error_max");
+    }
     table.times = result.times;
     for (const InverseKinematicsReport& report : result.motion.reports) {
         double total = 0;
@@ -201,6 +232,10 @@ StorageTable makeMarkerErrorTable(const InverseKinematicsResult& result) {
                 total += result.markerWeights[static_cast<std::size_t>(m)] * report.markerErrors[m] * report.markerErrors[m];
         table.rows.push_back({total, report.rmsMarkerError, report.maxMarkerError, static_cast<double>(report.markersSeen),
                               static_cast<double>(report.iterations), report.converged ? 1.0 : 0.0});
+        if (withOrientations) {
+            table.rows.back().push_back(report.rmsOrientationError);
+            table.rows.back().push_back(report.maxOrientationError);
+        }
     }
     return table;
 }
@@ -239,9 +274,11 @@ std::string runInverseKinematicsTool(const InverseKinematicsSetup& setup, const 
 }
 
 void writeInverseKinematicsFiles(const Model& model, const InverseKinematicsResult& result, const std::string& motionPath,
-                                 const std::string& errorsPath, bool writeErrors) {
+                                 const std::string& errorsPath, bool writeErrors, int decimals) {
     OutputFileSet files;
-    writeStorageFile(makeInverseKinematicsTable(model, result), files, motionPath);
+    StorageTable coordinates = makeInverseKinematicsTable(model, result);
+    coordinates.decimals = decimals;
+    writeStorageFile(coordinates, files, motionPath);
     if (writeErrors) writeStorageFile(makeMarkerErrorTable(result), files, errorsPath);
     else files.retire(errorsPath);
     files.commit();

@@ -84,7 +84,7 @@ OsimStaticOptimizationResult runOsimStaticOptimization(const Model& model, const
                                                        const ExternalLoads* loads,
                                                        const OsimStaticOptimizationOptions& options) {
     TensionMotionOptions motion;
-    motion.analysis.method = TensionMethod::StaticOptimization;
+    motion.analysis.method = "so";
     motion.analysis.minActivation = options.minActivation;
     motion.analysis.maxActivation = options.maxActivation;
     motion.analysis.useMusclePhysiology = options.useMusclePhysiology;

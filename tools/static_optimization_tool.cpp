@@ -82,7 +82,7 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
 
     const OsimModel osim = readOsimModel(setup.modelFile);
     OsimConversion conversion = convertOsimModel(osim);
-    for (const std::string& line : conversion.notImported) note("not imported: " + line);
+    reportOsimConversion(conversion, note);
     const Model& model = conversion.model;
 
     OsimStaticOptimizationOptions options;

@@ -9,6 +9,8 @@
 #include "sinew/signal/smoothing_spline.hpp"
 #include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/measured_loads.hpp"
+#include "sinew/tools/motion_contacts.hpp"
+#include "sinew/tools/motion_frames.hpp"
 
 namespace sinew {
 namespace {
@@ -53,98 +55,124 @@ StorageTable makeTable(const std::string& name, const std::vector<std::string>& 
     return table;
 }
 
-// Every frame of `trajectory` (q, qdot as u, qddot as udot), with the rows of `sampleTimes` listed in
-// `missingRows` flagged in between.
-TensionMotionResult analyseTrajectory(const Model& model, const CoordinateTrajectory& trajectory,
-                                      const Eigen::VectorXd& sampleTimes, std::vector<int> missingRows,
-                                      const ExternalLoads* loads, const TensionMotionOptions& options) {
-    const std::vector<Coordinate>& coordinates = model.getCoordinates();
-    TensionMotionResult result;
-    result.missingRows = std::move(missingRows);
+void append(StorageTable& table, double t, const Eigen::VectorXd& values) {
+    table.times.push_back(t);
+    table.rows.emplace_back(values.data(), values.data() + values.size());
+}
 
-    std::optional<MeasuredLoads> measured;
-    if (loads) measured.emplace(model, *loads);
-    TensionAnalysis analysis(model, options.analysis);
-    const bool staticOptimization = options.analysis.method == TensionMethod::StaticOptimization;
-
-    std::vector<std::string> wireNames, reportColumns = {"status", "Z", "active_wires", "iterations", "ipopt",
-                                                         "unactuated_residual"};
-    for (const Wire& wire : model.getWires()) wireNames.push_back(wire.name);
-    for (const Coordinate& c : coordinates) reportColumns.push_back(c.name + "_residual");
-    for (const Coordinate& c : coordinates) reportColumns.push_back(c.name + "_reserve");
-    result.tensions = makeTable("Wire tensions (" + std::string(toString(options.analysis.method)) + ")", wireNames);
-    result.report = makeTable("Tension report", reportColumns);
-    if (staticOptimization) {
+// The result's tables, a row per frame.
+class TensionTables {
+public:
+    TensionTables(const Model& model, const TensionMotionOptions& options, bool staticOptimization,
+                  TensionMotionResult& result)
+        : model_(model), options_(options), staticOptimization_(staticOptimization), result_(result) {
+        std::vector<std::string> wireNames;
+        reportColumns_ = {"status", "Z", "active_wires", "iterations", "ipopt", "unactuated_residual"};
+        for (const Wire& wire : model.getWires()) wireNames.push_back(wire.name);
+        for (const Coordinate& c : model.getCoordinates()) reportColumns_.push_back(c.name + "_residual");
+        for (const Coordinate& c : model.getCoordinates()) reportColumns_.push_back(c.name + "_reserve");
+        result.tensions = makeTable("Wire tensions (" + options.analysis.method + ")", wireNames);
+        result.report = makeTable("Tension report", reportColumns_);
+        if (!staticOptimization) return;
         result.activations = makeTable("Static Optimization", wireNames);
         std::vector<std::string> reserveNames;
         for (const ReserveActuator& reserve : options.analysis.reserves) reserveNames.push_back(reserve.name);
         result.reserves = makeTable("Reserve actuator forces", reserveNames);
     }
 
-    Data data(model);
-    std::vector<SpatialVector> linkForces(static_cast<std::size_t>(model.getNumLinks()));
-    const Eigen::Index n = trajectory.q.cols();
-    Eigen::VectorXd q(n), u(n), udot(n);
-    const auto append = [](StorageTable& table, double t, const Eigen::VectorXd& values) {
-        table.times.push_back(t);
-        table.rows.emplace_back(values.data(), values.data() + values.size());
-    };
     // A frame without input: zeros everywhere but its status, so that no table holds NaN.
-    const auto appendMissing = [&](double t) {
-        append(result.tensions, t, Eigen::VectorXd::Zero(model.getNumWires()));
-        if (staticOptimization) {
-            append(result.activations, t, Eigen::VectorXd::Zero(model.getNumWires()));
-            append(result.reserves, t, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(options.analysis.reserves.size())));
+    void appendMissing(double t) {
+        append(result_.tensions, t, Eigen::VectorXd::Zero(model_.getNumWires()));
+        if (staticOptimization_) {
+            append(result_.activations, t, Eigen::VectorXd::Zero(model_.getNumWires()));
+            append(result_.reserves, t, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(options_.analysis.reserves.size())));
         }
-        Eigen::VectorXd row = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(reportColumns.size()));
+        Eigen::VectorXd row = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(reportColumns_.size()));
         row[0] = kMissingInputStatus;
-        append(result.report, t, row);
-    };
-    const std::vector<int>& missing = result.missingRows;
-    std::size_t nextMissing = 0;
-    const int frames = static_cast<int>(trajectory.times.size());
-    for (int i = 0; i < frames; ++i) {
-        const double t = trajectory.times[i];
-        for (; nextMissing < missing.size() && sampleTimes[missing[nextMissing]] <= t; ++nextMissing)
-            appendMissing(sampleTimes[missing[nextMissing]]);
-        // After resampling (--lowpass over a gap) a frame may fall on a missing row's time: it stays flagged.
-        if (nextMissing > 0 && sampleTimes[missing[nextMissing - 1]] == t) continue;
-        q = trajectory.q.row(i).transpose();
-        u = trajectory.qdot.row(i).transpose();
-        udot = trajectory.qddot.row(i).transpose();
-        calcAppliedLinkForces(model, measured ? &*measured : nullptr, data, t, q, linkForces);
-        const std::string at = "tensions at t = " + std::to_string(t) + " s (frame " + std::to_string(i + 1) + ")";
-        const TensionFrame* solved = nullptr;
-        try {
-            solved = &analysis.calcFrame(q, u, udot, linkForces);
-        } catch (const Error& e) {
-            throw Error(at + ": " + e.what());
-        }
-        const TensionFrame& frame = *solved;
-        if (!frame.tau.allFinite()) {
-            Eigen::Index k = 0;
-            while (std::isfinite(frame.tau[k])) ++k;
-            throw Error(at + ": the generalized force of '" + getSpeedNames(model)[static_cast<std::size_t>(k)] +
-                        "' from inverse dynamics is not finite (check the motion and external loads there)");
-        }
-        result.infeasibleFrames += frame.status == DistributionStatus::Infeasible;
-        result.ipoptFrames += frame.usedIpopt;
-        result.failedFrames += frame.status == DistributionStatus::Failed;
-        append(result.tensions, t, frame.tension);
-        if (staticOptimization) {
-            append(result.activations, t, frame.activation);
-            append(result.reserves, t, frame.reserveForce);
+        append(result_.report, t, row);
+    }
+
+    void appendFrame(double t, const TensionFrame& frame) {
+        result_.infeasibleFrames += frame.status == DistributionStatus::Infeasible;
+        result_.ipoptFrames += frame.usedIpopt;
+        result_.failedFrames += frame.status == DistributionStatus::Failed;
+        append(result_.tensions, t, frame.tension);
+        if (staticOptimization_) {
+            append(result_.activations, t, frame.activation);
+            append(result_.reserves, t, frame.reserveForce);
         }
         std::vector<double> row = {static_cast<double>(frame.status), frame.torqueError,
                                    static_cast<double>(frame.activeWires), static_cast<double>(frame.iterations),
-                                   frame.usedIpopt ? 1.0 : 0.0,
-                                   frame.unactuatedResidual};
+                                   frame.usedIpopt ? 1.0 : 0.0, frame.unactuatedResidual};
         row.insert(row.end(), frame.residual.data(), frame.residual.data() + frame.residual.size());
         row.insert(row.end(), frame.reserve.data(), frame.reserve.data() + frame.reserve.size());
-        result.report.times.push_back(t);
-        result.report.rows.push_back(std::move(row));
-        if (options.onFrame) options.onFrame(i + 1, frames);
+        result_.report.times.push_back(t);
+        result_.report.rows.push_back(std::move(row));
     }
+
+private:
+    const Model& model_;
+    const TensionMotionOptions& options_;
+    bool staticOptimization_;
+    TensionMotionResult& result_;
+    std::vector<std::string> reportColumns_;
+};
+
+// One frame's tensions; errors name the frame.
+const TensionFrame& solveFrame(TensionAnalysis& analysis, const MotionFrame& motion) {
+    const std::string at =
+        "tensions at t = " + std::to_string(motion.time) + " s (frame " + std::to_string(motion.index + 1) + ")";
+    const TensionFrame* solved = nullptr;
+    try {
+        solved = &analysis.calcFrame(motion.q, motion.u, motion.udot, motion.appliedLinkForces);
+    } catch (const Error& e) {
+        throw Error(at + ": " + e.what());
+    }
+    if (!solved->tau.allFinite()) {
+        Eigen::Index k = 0;
+        while (std::isfinite(solved->tau[k])) ++k;
+        throw Error(at + ": the generalized force of '" + getSpeedNames(analysis.getModel())[static_cast<std::size_t>(k)] +
+                    "' from inverse dynamics is not finite (check the motion and external loads there)");
+    }
+    return *solved;
+}
+
+// Every frame of `trajectory` (q, qdot as u, qddot as udot), with the rows of `sampleTimes` listed in
+// `missingRows` flagged in between.
+TensionMotionResult analyseTrajectory(const Model& model, const CoordinateTrajectory& trajectory,
+                                      const Eigen::VectorXd& sampleTimes, std::vector<int> missingRows,
+                                      const ExternalLoads* loads, const TensionMotionOptions& options) {
+    TensionMotionResult result;
+    result.missingRows = std::move(missingRows);
+    std::optional<MeasuredLoads> measured;
+    if (loads) measured.emplace(model, *loads);
+    std::optional<MotionContacts> contacts;
+    TensionAnalysisOptions analysisOptions = options.analysis;
+    if (!loads && options.contact && !model.getContacts().empty()) {
+        contacts.emplace(model, trajectory, options.contactDetection, result.contact);
+        analysisOptions.columns.push_back(contacts->getColumns());
+    }
+    TensionAnalysis analysis(model, analysisOptions);
+    TensionTables tables(model, options, analysis.solvesActivations(), result);
+    const auto appendMissing = [&](double t) {
+        tables.appendMissing(t);
+        if (contacts) contacts->appendMissing(t);
+    };
+    const std::vector<int>& missing = result.missingRows;
+    std::size_t nextMissing = 0;
+    forEachMotionFrame(
+        model, trajectory, measured ? &*measured : nullptr,
+        [&](const MotionFrame& motion) {
+            for (; nextMissing < missing.size() && sampleTimes[missing[nextMissing]] <= motion.time; ++nextMissing)
+                appendMissing(sampleTimes[missing[nextMissing]]);
+            // After resampling (--lowpass over a gap) a frame may fall on a missing row's time: it stays flagged.
+            if (nextMissing > 0 && sampleTimes[missing[nextMissing - 1]] == motion.time) return;
+            if (contacts) contacts->prepareFrame(motion.index);
+            const TensionFrame& frame = solveFrame(analysis, motion);
+            tables.appendFrame(motion.time, frame);
+            if (contacts) contacts->appendFrame(motion, analysis, frame);
+        },
+        options.onFrame);
     for (; nextMissing < missing.size(); ++nextMissing) appendMissing(sampleTimes[missing[nextMissing]]);
     result.flaggedFrames = result.infeasibleFrames + result.failedFrames + static_cast<int>(missing.size());
     return result;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -12,6 +13,7 @@
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/model_builder.hpp"
 #include "sinew/core/wire_path.hpp"
+#include "sinew/core/wire_path_samples.hpp"
 
 namespace sinew {
 namespace {
@@ -59,6 +61,7 @@ public:
         addSourceWires(builder, forked);
         for (const WholeBodyPassiveRule& rule : rules_.passive) addPassiveWire(builder, rule);
         for (const WholeBodyJointWiresRule& rule : rules_.jointWires) addJointWires(builder, rule);
+        addContacts(builder);
         return {builder.build(), notes_};
     }
 
@@ -201,6 +204,44 @@ private:
         return link;
     }
 
+    // The feet (docs/whole-body-model.md, "Feet"): a sole polygon on each calcaneus and toes link. The vertices
+    // are set in MS-Human-700's body frames (x forward, y up, z to the right) under its skin capsules: the
+    // heel, the metatarsal heads and the toe tips, mirrored in z for the left foot. They are then levelled to
+    // the lowest of them at the neutral pose, so that the soles lie flat on one floor there. A source without
+    // these bodies gets no feet.
+    void addContacts(ModelBuilder& builder) const {
+        struct Sole {
+            const char* body;
+            double mirror;
+            std::vector<Eigen::Vector3d> p;
+        };
+        const std::vector<Eigen::Vector3d> calcn = {{0.005, -0.01, -0.025}, {0.005, -0.01, 0.015},
+                                                    {0.17, -0.01, 0.04}, {0.17, -0.01, -0.04}};
+        const std::vector<Eigen::Vector3d> toes = {{0.0, -0.01, -0.035}, {0.0, -0.01, 0.03},
+                                                   {0.05, -0.01, 0.02}, {0.055, -0.01, -0.03}};
+        const std::vector<Sole> soles = {{"calcn_r", 1, calcn}, {"toes_r", 1, toes}, {"calcn_l", -1, calcn}, {"toes_l", -1, toes}};
+        const Eigen::Vector3d up = -source_.getGravity().normalized();
+        std::vector<std::vector<NeutralPoint>> placed;
+        double floor = std::numeric_limits<double>::infinity();
+        for (const Sole& sole : soles) {
+            if (source_.findLinkIndex(sole.body) < 0) return;
+            placed.emplace_back();
+            for (const Eigen::Vector3d& p : sole.p) {
+                placed.back().push_back(locate({sole.body, Eigen::Vector3d(p.x(), p.y(), sole.mirror * p.z()), false, ""}));
+                floor = std::min(floor, up.dot(placed.back().back().p_G));
+            }
+        }
+        for (const std::vector<NeutralPoint>& vertices : placed) {
+            ContactSpec contact;
+            contact.name = vertices.front().link;
+            contact.link = vertices.front().link;
+            contact.where = rules_.file;
+            for (const NeutralPoint& vertex : vertices)
+                contact.sole_B.push_back(toLink(vertex.link, vertex.p_G - (up.dot(vertex.p_G) - floor) * up));
+            builder.addContact(contact);
+        }
+    }
+
     void addLinksAndJoints(ModelBuilder& builder) const {
         bool rootSeen = false;
         for (const WholeBodyLinkRule& rule : rules_.links) {
@@ -286,55 +327,19 @@ private:
         return points;
     }
 
-    // The path of a source wire at neutral, as the points it passes (a wrap's tangent points included, on
-    // the wrap object's link).
+    // The path of a source wire at neutral, as the points it passes: a wrap's tangent points and the points
+    // along its arc between them (calcWirePathSamples, chords of at most 5.6 degrees), on the wrap object's link.
     std::vector<NeutralPoint> getNeutralPath(int w) const {
         const Wire& wire = source_.getWire(w);
         if (wire.isPolyline()) return getNeutralPoints(wire);
+        std::vector<WirePathSample> samples;
+        calcWirePathSamples(source_, data_, w, M_PI / 32, samples);
         std::vector<NeutralPoint> path;
         // A wrap that touches its object at a path point (an end on the surface) repeats that point.
-        for (int i = 0; i < data_.wirePathSize[w]; ++i) {
-            const Data::WirePathPoint& point = data_.wirePath[data_.wirePathStart[w] + i];
-            if (!path.empty() && (point.p_G - path.back().p_G).norm() < 1e-9) continue;
-            if (point.wrap >= 0 && point.arcLength > 0 && !path.empty())
-                addArcPoints(wire.wraps[static_cast<std::size_t>(point.wrap)], path.back().p_G, point, path);
-            path.push_back({groupOf(point.link), point.p_G});
-        }
+        for (const WirePathSample& sample : samples)
+            if (path.empty() || (sample.p_G - path.back().p_G).norm() >= 1e-9)
+                path.push_back({groupOf(sample.link), sample.p_G});
         return path;
-    }
-
-    // Points along a wrap's arc between its tangent points (excluded), so that a polyline through them keeps
-    // the arc's length to a fraction of a millimetre: the great circle over a sphere, the helix round a
-    // cylinder, each the way round whose length is the wrap's arc length.
-    void addArcPoints(const WireWrap& wrap, const Eigen::Vector3d& from_G, const Data::WirePathPoint& to,
-                      std::vector<NeutralPoint>& path) const {
-        constexpr int kSegments = 16;
-        const WrapObject& object = source_.getWrapObjects()[static_cast<std::size_t>(wrap.object)];
-        const Eigen::Matrix3d R_GW = data_.R_GB[object.link] * object.R_BW;
-        const Eigen::Vector3d p_GW = data_.p_GB[object.link] + data_.R_GB[object.link] * object.p_BW;
-        const Eigen::Vector3d a = R_GW.transpose() * (from_G - p_GW), b = R_GW.transpose() * (to.p_G - p_GW);
-        const std::string link = groupOf(object.link);
-        if (object.shape == WrapShape::Sphere) {
-            const double angle = std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0));
-            const double arc = to.arcLength / object.radius;
-            Eigen::Vector3d axis = a.cross(b).normalized();
-            if (std::abs(arc - angle) > std::abs(arc - (2 * M_PI - angle))) axis = -axis;  // the long way round
-            for (int k = 1; k < kSegments; ++k)
-                path.push_back({link, p_GW + R_GW * (Eigen::AngleAxisd(arc * k / kSegments, axis) * a)});
-        } else if (object.shape == WrapShape::Cylinder) {
-            const double dz = b.z() - a.z();
-            const double turn = std::sqrt(std::max(0.0, to.arcLength * to.arcLength - dz * dz)) / object.radius;
-            double shortest = std::atan2(b.y(), b.x()) - std::atan2(a.y(), a.x());
-            shortest = std::remainder(shortest, 2 * M_PI);
-            const double sweep = std::abs(turn - std::abs(shortest)) < std::abs(turn - (2 * M_PI - std::abs(shortest)))
-                                     ? shortest : -std::copysign(2 * M_PI - std::abs(shortest), shortest);
-            for (int k = 1; k < kSegments; ++k) {
-                const double t = static_cast<double>(k) / kSegments;
-                const Eigen::Vector3d p = Eigen::AngleAxisd(t * sweep, Eigen::Vector3d::UnitZ()) *
-                                          Eigen::Vector3d(a.x(), a.y(), 0);
-                path.push_back({link, p_GW + R_GW * Eigen::Vector3d(p.x(), p.y(), a.z() + t * dz)});
-            }
-        }
     }
 
     WireSpec makeWire(const std::string& name, WireKind kind, const std::vector<NeutralPoint>& points,

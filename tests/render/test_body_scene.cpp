@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <random>
 
 #include "sinew/core/error.hpp"
 #include "sinew/core/kinematics.hpp"
@@ -10,6 +11,7 @@
 #include "sinew/io/model_file.hpp"
 #include "sinew/io/model_loading.hpp"
 #include "sinew/render/body_scene.hpp"
+#include "support/wrap_test_model.hpp"
 #include "two_wire_model.hpp"
 
 namespace sinew {
@@ -41,7 +43,8 @@ TEST(BodyScene, PolylinePathsHaveCoresLengths) {
     }
 }
 
-// Wrapped paths: from the origin to the insertion, their chords no longer than core's length over the wraps.
+// Wrapped paths: from the origin to the insertion, with core's length over the wraps less at most the
+// 5-degree chords' error (under 1e-3 of an arc's length).
 TEST(BodyScene, WrappedPathsRunFromOriginToInsertion) {
     const std::string path = SINEW_SHARED_DIR "/data/opensim/arm26/arm26.osim";
     if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent (developer data)";
@@ -58,9 +61,31 @@ TEST(BodyScene, WrappedPathsRunFromOriginToInsertion) {
         EXPECT_LT((drawn.front() - calcPoint_G(model, data, wire, 0)).norm(), 1e-12) << wire.name;
         EXPECT_LT((drawn.back() - calcPoint_G(model, data, wire, wire.numPoints - 1)).norm(), 1e-12) << wire.name;
         EXPECT_LE(calcPolylineLength(drawn), data.wireLength[w] + 1e-12) << wire.name;
-        EXPECT_GT(calcPolylineLength(drawn), 0.9 * data.wireLength[w]) << wire.name;
+        EXPECT_GT(calcPolylineLength(drawn), (1 - 1e-3) * data.wireLength[w]) << wire.name;
     }
     EXPECT_GT(wrapped, 0);
+}
+
+// The wrap arm's cylinder, sphere and ellipsoid: each wrapped path is drawn along its arcs, with points
+// beyond the evaluated path's and core's length less at most the chords' error.
+TEST(BodyScene, WrapsAreDrawnAlongTheirArcs) {
+    const Model model = test::loadWrapArm();
+    Data data(model);
+    std::mt19937 rng(5);
+    int arcs = 0;
+    std::vector<Eigen::Vector3d> drawn;
+    for (int pose = 0; pose < 20; ++pose) {
+        calcPositionKinematics(model, data, test::randomWrapArmPose(model, rng));
+        calcWirePaths(model, data);
+        for (int w = 0; w < model.getNumWires(); ++w) {
+            getWirePath_G(model, data, w, drawn);
+            const int evaluated = model.getWire(w).isPolyline() ? model.getWire(w).numPoints : data.wirePathSize[w];
+            arcs += static_cast<int>(drawn.size()) > evaluated;
+            EXPECT_LE(calcPolylineLength(drawn), data.wireLength[w] * (1 + 1e-12)) << model.getWire(w).name;
+            EXPECT_GT(calcPolylineLength(drawn), data.wireLength[w] * (1 - 1e-3)) << model.getWire(w).name;
+        }
+    }
+    EXPECT_GT(arcs, 20);
 }
 
 TEST(BodyScene, CapsulesAreSizedFromTheLinks) {

@@ -174,7 +174,7 @@ TEST(OsimResidualActuators, Gait2354ResidualsBalanceThePelvis) {
     ASSERT_EQ(root.parent, kGround);
 
     TensionAnalysisOptions options;
-    options.method = TensionMethod::StaticOptimization;
+    options.method = "so";
     TensionAnalysis bare(model, options);
     options.reserves = makeGaitReserves(model);
     TensionAnalysis withResiduals(model, options);

@@ -124,8 +124,14 @@ public:
     double getCost() const;
 
 private:
+    // The constructor's steps, in order.
     void buildBodies(const Model& model);
+    void addLoopJoints(const Model& model);
+    void addHangJoint(const Model& model, int hangLink);
     void chooseTreeOperations(const Model& model, int hangLink);
+    void buildLeaves(int numTreeJoints);
+    void scheduleSerial(int numTreeJoints);
+    void scheduleBalanced(int numTreeJoints);
     int leafOf(int body) const;     // the body's leaf subassembly (ground's for kGroundBody)
     int currentOf(int body) const;  // the subassembly that holds the body now
     int findCurrent(int subassembly) const;

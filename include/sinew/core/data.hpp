@@ -73,10 +73,14 @@ struct Data {
     Eigen::VectorXd displacedQ;
     std::vector<WirePathPoint> displacedPath;
 
-    // Per link: spatial force [moment about the link's origin p_GB; force], ground axes. Moments about the
-    // link rather than the ground origin keep their digits when the model is far from the origin. Filled
-    // by calcWireLinkForces; tip-to-base passes use it as workspace.
+    // Per link: the wires' spatial forces [moment about the link's origin p_GB; force], ground axes, filled
+    // by calcWireLinkForces (and calcWireGeneralizedForces) and nothing else. Moments about the link rather
+    // than the ground origin keep their digits when the model is far from the origin.
     std::vector<SpatialVector> F_G;
+    // Per link, in F_G's convention: scratch for the tip-to-base passes that accumulate subtree forces in
+    // place (calcGeneralizedForcesFromLinkForces, addToParent): the wire Jacobian's unit forces, the tension
+    // problem's loop columns and inverse dynamics' net forces. Holds nothing between calls.
+    std::vector<SpatialVector> scratchF_G;
 };
 
 }  // namespace sinew

@@ -3,6 +3,7 @@
 // Geometry lives in the wire path; the law never sees links or points (docs/force-laws.md).
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -50,6 +51,13 @@ public:
     // Energy stored in the conservative part of the law, J, at this length (0 for non-conservative laws);
     // a non-finite value throws sinew::Error.
     double calcPotentialEnergy(double length) const;
+
+    // Laws driven by an activation (muscles) say how strong they are, for the tension distributions
+    // (docs/tensions.md): the max isometric force, N, and the active force per unit activation at a wire
+    // state as a multiple of it (OpenSim's fl × fv × cos(pennation) on a rigid tendon, fv at activation 1).
+    // Laws without an activation have neither: nullopt, and multiplier 1.
+    virtual std::optional<double> getMaxIsometricForce() const { return std::nullopt; }
+    virtual double calcActiveForceMultiplier(const WireState& /*state*/) const { return 1; }
 
 protected:
     virtual double doCalcTension(const WireState& state) const = 0;

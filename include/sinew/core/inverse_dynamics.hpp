@@ -14,7 +14,7 @@ namespace sinew {
 // what Simbody's SimbodyMatterSubsystem::calcResidualForceIgnoringConstraints returns (and OpenSim's
 // inverse dynamics reports), loops ignored. appliedLinkForces has one spatial force per link in the
 // Data::F_G convention (moment about the link's origin; force; ground axes). Fills Data's position and
-// velocity kinematics for (q, u), alpha_GB and a_GB; uses Data::F_G as workspace.
+// velocity kinematics for (q, u), alpha_GB and a_GB; uses Data::scratchF_G, and leaves Data::F_G alone.
 void calcInverseDynamics(const Model& model, Data& data, const Eigen::VectorXd& q, const Eigen::VectorXd& u,
                          const Eigen::VectorXd& udot, const std::vector<SpatialVector>& appliedLinkForces,
                          Eigen::Ref<Eigen::VectorXd> tau);

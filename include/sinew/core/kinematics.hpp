@@ -15,9 +15,9 @@ void calcPositionKinematics(const Model& model, Data& data, const Eigen::VectorX
 // Fills Data::w_GB, v_GB from u (nu). Needs calcPositionKinematics first.
 void calcVelocityKinematics(const Model& model, Data& data, const Eigen::VectorXd& u);
 
-// Generalized forces (nu) equivalent to the spatial forces in Data::F_G (moment about each link's origin,
-// force): tau = sum over links of J_link^T F. Consumes Data::F_G (it accumulates subtree forces in place,
-// tip to base). Needs calcPositionKinematics first.
+// Generalized forces (nu) equivalent to the spatial forces in Data::scratchF_G (moment about each link's
+// origin, force): tau = sum over links of J_link^T F. Consumes Data::scratchF_G (it accumulates subtree
+// forces in place, tip to base). Needs calcPositionKinematics first.
 void calcGeneralizedForcesFromLinkForces(const Model& model, Data& data, Eigen::Ref<Eigen::VectorXd> tau);
 
 // The generalized force (joint.nu values written at tauJoint) that a spatial force F_G (moment about the
@@ -32,7 +32,8 @@ void projectOntoJoint(const Joint& joint, const Data& data, int link, const Eige
 // Reads what projectOntoJoint reads.
 JointMotion calcJointMotion_G(const Joint& joint, const Data& data, int link, const Eigen::Vector3d& p_ref);
 
-// Adds a link's spatial force (moment about its origin) to its parent's (moment about the parent's origin).
+// Adds a link's spatial force in Data::scratchF_G (moment about its origin) to its parent's there (moment
+// about the parent's origin).
 void addToParent(const Model& model, Data& data, int link);
 
 // q advanced along u for a time dt on the configuration manifold (quaternions by exact rotation about the

@@ -193,6 +193,15 @@ struct Wire {
     bool isPolyline() const { return conditions.empty() && motions.empty() && wraps.empty(); }
 };
 
+// A link that may touch the ground (a foot): when the tension analysis finds it in contact (contact_detection.hpp),
+// the ground pushes on its sole with forces inside a friction cone (docs/tensions-from-motion.md, "Contact").
+struct Contact {
+    std::string name;
+    int link = 0;
+    std::vector<Eigen::Vector3d> sole_B;  // m, the sole polygon's vertices in the link frame (>= 1)
+    double friction = 0.8;                // Coulomb coefficient mu, >= 0
+};
+
 class Model {
 public:
     const std::string& getName() const { return name_; }
@@ -214,6 +223,7 @@ public:
     const std::vector<CoordinateCoupler>& getCouplers() const { return couplers_; }
     const std::vector<WirePoint>& getWirePoints() const { return wirePoints_; }  // all wires' points, flat
     const std::vector<WrapObject>& getWrapObjects() const { return wrapObjects_; }
+    const std::vector<Contact>& getContacts() const { return contacts_; }  // the links the model names as feet
 
     const Eigen::Vector3d& getGravity() const { return gravity_; }  // m/s^2, in ground
     const Eigen::VectorXd& getDefaultQ() const { return defaultQ_; }  // the model file's initial pose (nq)
@@ -235,6 +245,7 @@ private:
     std::vector<Wire> wires_;
     std::vector<WirePoint> wirePoints_;
     std::vector<WrapObject> wrapObjects_;
+    std::vector<Contact> contacts_;
     Eigen::Vector3d gravity_ = Eigen::Vector3d(0, -9.80665, 0);
     Eigen::VectorXd defaultQ_;
     std::vector<Coordinate> coordinates_;

@@ -143,6 +143,15 @@ struct WireSpec {
     std::string lawWhere;  // where the force law is written, for its errors; `where` when empty
 };
 
+// A link the model names as a foot (Contact): its sole polygon in the link frame, and mu.
+struct ContactSpec {
+    std::string name;
+    std::string link;
+    std::vector<Eigen::Vector3d> sole_B;  // m, at least one vertex
+    double friction = 0.8;                // >= 0
+    std::string where;
+};
+
 class ModelBuilder {
 public:
     explicit ModelBuilder(std::string modelName) : name_(std::move(modelName)) {}
@@ -155,11 +164,15 @@ public:
     void addCoupler(CoordinateCouplerSpec coupler) { couplers_.push_back(std::move(coupler)); }
     void addWire(WireSpec wire) { wires_.push_back(std::move(wire)); }
     void addWrapObject(WrapObjectSpec object) { wrapObjects_.push_back(std::move(object)); }
+    void addContact(ContactSpec contact) { contacts_.push_back(std::move(contact)); }
 
     // Validates everything and builds the model; throws ModelError naming the offending element's `where`.
     Model build() const;
 
 private:
+    struct Compilation;  // build()'s stages and the state they share (model_builder.cpp)
+    void buildContacts(Model& model) const;  // after the links: resolves and checks each contact
+
     std::string name_;
     Eigen::Vector3d gravity_ = Eigen::Vector3d(0, -9.80665, 0);
     std::string gravityWhere_;
@@ -170,6 +183,7 @@ private:
     std::vector<CoordinateCouplerSpec> couplers_;
     std::vector<WireSpec> wires_;
     std::vector<WrapObjectSpec> wrapObjects_;
+    std::vector<ContactSpec> contacts_;
 };
 
 }  // namespace sinew

@@ -43,6 +43,9 @@ public:
     // factor taken at `activation` (Thelen's velocity scale grows with activation).
     ThelenFiberState calcFiberState(double length, double speed, double activation) const;
 
+    std::optional<double> getMaxIsometricForce() const override { return parameters_.maxIsometricForce; }
+    double calcActiveForceMultiplier(const WireState& state) const override;
+
 protected:
     double doCalcTension(const WireState& state) const override;
     double doCalcPotentialEnergy(double length) const override;

@@ -12,7 +12,7 @@ namespace sinew {
 // tangent points count as fixed on their objects' links, and a moving point adds its motion in its link to
 // its coordinate's column (docs/wire-paths.md); a wire over an ellipsoid takes its row from
 // Data::wireLengthGradient. J must be numWires x nu. Needs calcPositionKinematics and calcWirePaths. Each
-// row costs O(points + the links between the wire's points and the root).
+// row costs O(points + the links between the wire's points and the root). Uses Data::scratchF_G.
 void calcWireJacobian(const Model& model, Data& data, Eigen::Ref<Eigen::MatrixXd> J);
 
 // The spatial forces (moment about each link's origin; force) that tensions f >= 0 (numWires, N) exert on
@@ -28,7 +28,8 @@ void addWireCoordinateForces(const Model& model, const Data& data, const Eigen::
                              Eigen::Ref<Eigen::VectorXd> tau);
 
 // The generalized forces (nu) that tensions f >= 0 (numWires, N) exert: tau = -J^T f, since a tension
-// shortens its wire. Computed in one tip-to-base pass without forming J. Needs calcWirePaths.
+// shortens its wire. Computed in one tip-to-base pass without forming J. Needs calcWirePaths. Leaves the
+// wires' link forces in Data::F_G (calcWireLinkForces); uses Data::scratchF_G.
 void calcWireGeneralizedForces(const Model& model, Data& data, const Eigen::VectorXd& tensions,
                                Eigen::Ref<Eigen::VectorXd> tau);
 

@@ -20,7 +20,7 @@ const char* toString(ModelFormat format);
 ModelFormat detectModelFormat(const std::string& path);
 
 // Reads the model; `notes` (may be empty) receives one "not imported: ..." line per element a converter
-// left out.
+// left out, and one "warning: ..." line per OpenSim quirk imported as OpenSim handles it.
 Model loadModel(const std::string& path, const std::function<void(const std::string&)>& notes);
 
 // The motion-capture markers the model file defines, on the links of `model` (loaded from the same file):

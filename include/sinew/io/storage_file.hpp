@@ -25,6 +25,9 @@ struct StorageTable {
     std::string where = {};
     // The file line of each row when read from a file (rows[i] sits on line rowLines[i]); empty otherwise.
     std::vector<int> rowLines = {};
+    // Written with this many digits after the point (fixed), for a file meant to be small; -1: 17
+    // significant digits, which read back bit for bit.
+    int decimals = -1;
 };
 
 // Throws sinew::Error for a table that could not be read back: rows of the wrong length, a non-finite

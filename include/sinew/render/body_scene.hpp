@@ -1,8 +1,9 @@
 #pragma once
 // What a picture of the body shows at one instant, in ground coordinates: the links as capsules and every
 // wire's path as evaluated by core (calcWirePaths: via-points, active conditional and moving points, the
-// wraps' tangent points), with its tension and, for ligaments with a rest length, its strain. Pictures
-// (picture.hpp) and the browser viewer (html_viewer.hpp) draw these; neither computes any geometry itself.
+// wraps' tangent points and arcs), with its tension and, for ligaments with a rest length, its strain.
+// Pictures (picture.hpp) and the browser viewer (html_viewer.hpp) draw these; neither computes any geometry
+// itself.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -53,9 +54,9 @@ struct BodyFrame {
     std::vector<SceneWire> wires;
 };
 
-// Wire w's path as calcWirePaths left it in `data`: Data::p_GP of its points for a polyline wire, the
-// Data::wirePath slice (active points and tangent points) for the others. A wrap's arc between its two
-// tangent points is drawn as their chord.
+// Wire w's path as calcWirePaths left it in `data` (calcWirePathSamples): Data::p_GP of its points for a
+// polyline wire, the Data::wirePath slice (active points and tangent points) for the others, with points
+// along each wrap's arc on the object's surface between its tangent points, at most 5 degrees apart.
 void getWirePath_G(const Model& model, const Data& data, int w, std::vector<Eigen::Vector3d>& path_G);
 
 // The frame at the poses and paths in `data` (calcPositionKinematics and calcWirePaths done) with the given

@@ -1,6 +1,6 @@
 #pragma once
 // The QP tension distribution by a warm-started active-set method in the DOF-dimensional torque space
-// (docs/tensions.md, "The active-set QP"):
+// (docs/tensions.md, "The active-set QP"; the paper's Eq. 14 with the regulariser below):
 //
 //     min ½ Σ_j weight_j x_j² + ½ Σ_{tolerance rows} (tau - A x)_i²
 //     s.t. (A x)_i = tau_i on equality rows, lower <= x <= upper on the bounded variables,
@@ -17,6 +17,7 @@
 
 #include "sinew/tensions/distribution_problem.hpp"
 #include "sinew/tensions/ipopt_solver.hpp"
+#include "sinew/tensions/tension_solver.hpp"
 
 namespace sinew {
 
@@ -39,7 +40,7 @@ struct ActiveSetOptions {
 
 // One solver per sequence of frames; it keeps the previous frame's multipliers as the warm start and its
 // buffers. Not thread-safe: one per thread.
-class ActiveSetSolver {
+class ActiveSetSolver final : public TensionSolver {
 public:
     explicit ActiveSetSolver(ActiveSetOptions options = {});
 
@@ -47,9 +48,9 @@ public:
     // previous frame's multipliers when the number of rows is the same. A frame whose equality rows no x
     // within the bounds meets is Infeasible (infeasible_frame.hpp: the phase-1 reserve, the least-squares
     // answer); a feasible one the active set fails on goes to Ipopt (ActiveSetOptions::ipoptFallback).
-    void solve(const DistributionProblem& problem, DistributionResult& result);
+    void solve(const DistributionProblem& problem, DistributionResult& result) override;
     // The next solve starts cold (y = 0).
-    void reset() { hasWarmStart_ = false; }
+    void reset() override { hasWarmStart_ = false; }
 
 private:
     enum Regime : signed char { AtLower = -1, Free = 0, AtUpper = 1 };

@@ -62,7 +62,7 @@ struct DistributionResult {
     Eigen::VectorXd multipliers;  // (rows) the row multipliers y: d(objective)/d(tau)
     Eigen::VectorXd residual;     // (rows) tau - A x
     double objective = 0;         // the method's objective
-    double torqueError = 0;       // the paper's Z = ½ |tau - A x|² over all rows
+    double torqueError = 0;       // the paper's Z = ½ |tau - A x|² over all rows (Eq. 10)
     int activeVariables = 0;      // bounded variables off their lower bound (wires pulling)
     int iterations = 0;           // simplex pivots, or active-set (Newton) steps
     // The frame was solved by the Ipopt fallback (ipopt_solver.hpp) after the active-set solver failed, or

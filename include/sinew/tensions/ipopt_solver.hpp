@@ -11,16 +11,18 @@
 #include <memory>
 
 #include "sinew/tensions/distribution_problem.hpp"
+#include "sinew/tensions/tension_solver.hpp"
 
 namespace sinew {
 
 struct IpoptSolverOptions {
     double tolerance = 1e-12;  // Ipopt's tol (scaled KKT error)
     int maxIterations = 3000;
+    double exponent = 2;  // the cost exponent p of solve(problem, result)
 };
 
 // Not thread-safe: one per thread. Keeps one IpoptApplication.
-class IpoptSolver {
+class IpoptSolver final : public TensionSolver {
 public:
     explicit IpoptSolver(IpoptSolverOptions options = {});
     ~IpoptSolver();
@@ -32,10 +34,17 @@ public:
     // rows unreachable; result.reserve is left zero, the phase-1 LP gives it) or Failed; usedIpopt true;
     // x within the bounds; multipliers as the QP's (d objective / d tau; on tolerance rows the residual).
     void solve(const DistributionProblem& problem, double exponent, DistributionResult& result);
+    // The same with the options' exponent.
+    void solve(const DistributionProblem& problem, DistributionResult& result) override {
+        solve(problem, exponent_, result);
+    }
+    // Every solve is cold (an interior point takes no warm start from the last frame).
+    void reset() override {}
 
 private:
     struct Backend;
     std::unique_ptr<Backend> backend_;
+    double exponent_;
 };
 
 }  // namespace sinew

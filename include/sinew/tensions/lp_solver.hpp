@@ -1,5 +1,5 @@
 #pragma once
-// The LP tension distribution with Clp's dual simplex (docs/tensions.md, "The LP"):
+// The LP tension distribution with Clp's dual simplex (docs/tensions.md, "The LP"; the paper's Eq. 11-12):
 //
 //     min cost^T x   s.t.  tau - tolerance <= A x <= tau + tolerance (equality rows: A x = tau),
 //                          lower <= x <= upper on the bounded variables, free variables unbounded.
@@ -11,10 +11,11 @@
 #include <memory>
 
 #include "sinew/tensions/distribution_problem.hpp"
+#include "sinew/tensions/tension_solver.hpp"
 
 namespace sinew {
 
-class LpSolver {
+class LpSolver final : public TensionSolver {
 public:
     LpSolver();
     ~LpSolver();
@@ -23,9 +24,9 @@ public:
 
     // Solves `problem` (validated; throws sinew::Error when malformed) into `result`. result.multipliers
     // are the row duals y (reduced costs cost - A^T y); x is within its bounds (Clp's answer, clamped).
-    void solve(const DistributionProblem& problem, DistributionResult& result);
+    void solve(const DistributionProblem& problem, DistributionResult& result) override;
     // The next solve starts cold: a new ClpSimplex and the all-slack basis with the free columns basic.
-    void reset();
+    void reset() override;
 
 private:
     struct Backend;

@@ -5,11 +5,10 @@
 //                                       minActivation <= a <= maxActivation, reserve controls within theirs,
 //
 // with F_w = maxIsometricForce_w × forceMultiplier_w (the force-length × force-velocity multipliers of the
-// frame, given per wire) and F_r a reserve's optimal force. For p = 2 (OpenSim's default) it is the
-// active-set QP (active_set_solver.hpp) in activation variables: weights 2, all rows equalities, loop forces
-// free. Other exponents p >= 1 (convex) are solved by Ipopt (ipopt_solver.hpp), milliseconds per frame.
-// Frames no activations within their bounds can meet are Infeasible with the phase-1 reserve and the
-// least-squares activations (infeasible_frame.hpp).
+// frame, given per wire) and F_r a reserve's optimal force: the wire problem rewritten in activations, then
+// solved by StaticOptimizationSolver (static_optimization_solver.hpp). A motion's frames get the same
+// problem from TensionProblemBuilder (tension_problem.hpp) with the "so" method; this class takes a wire
+// problem made elsewhere.
 #include <Eigen/Core>
 #include <limits>
 #include <memory>
@@ -17,24 +16,12 @@
 #include <string>
 #include <vector>
 
-#include "sinew/core/body_actuator.hpp"
 #include "sinew/tensions/active_set_solver.hpp"
 #include "sinew/tensions/distribution_problem.hpp"
-#include "sinew/tensions/ipopt_solver.hpp"
+#include "sinew/tensions/reserve_columns.hpp"
+#include "sinew/tensions/static_optimization_solver.hpp"
 
 namespace sinew {
-
-// A generalized force on one DOF (OpenSim's CoordinateActuator used as a reserve), or with `body` a force
-// or torque on links (PointActuator, TorqueActuator: residuals on a floating root), whose generalized force
-// per unit control depends on the state: its column is then given to each solve (reserveColumns).
-struct ReserveActuator {
-    std::string name;
-    int dof = 0;                // row (index into u); unused with `body`
-    double optimalForce = 1;    // N m or N per unit control, > 0
-    double minControl = -std::numeric_limits<double>::infinity();
-    double maxControl = std::numeric_limits<double>::infinity();
-    std::optional<BodyActuator> body = std::nullopt;
-};
 
 struct StaticOptimizationSettings {
     Eigen::VectorXd maxIsometricForce;  // (numWires) N, > 0
@@ -56,6 +43,10 @@ struct StaticOptimizationResult {
     Eigen::VectorXd loopForce;        // (numFree of the wire problem)
 };
 
+// Fills empty activation bounds with [0, 1]; throws sinew::Error naming the wire or reserve whose settings
+// are invalid, or an exponent below 1.
+void validateStaticOptimizationSettings(StaticOptimizationSettings& settings);
+
 class StaticOptimization {
 public:
     // Throws sinew::Error naming the wire or reserve whose settings are invalid, or an exponent below 1 (sizes
@@ -73,9 +64,7 @@ public:
 
 private:
     StaticOptimizationSettings settings_;
-    ActiveSetSolver solver_;
-    double infeasibilityTolerance_;
-    std::unique_ptr<IpoptSolver> ipopt_;  // p != 2
+    StaticOptimizationSolver solver_;
     DistributionProblem problem_;  // the activation problem, its values rewritten each frame
 
     // problem_.A's pattern is the wire problem's (kept in wirePattern_) and each reserve's DOF, or, for a

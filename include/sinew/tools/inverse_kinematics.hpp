@@ -28,6 +28,14 @@ struct CoordinateTask {
     double weight = 1;
 };
 
+// A frame fixed on a link held near a measured orientation (a BVH segment's frame): its cost is
+// 1/2 weight |theta|^2, theta the rotation vector from the target to the frame.
+struct OrientationTask {
+    std::string link;
+    Eigen::Matrix3d R_BF = Eigen::Matrix3d::Identity();  // the tracked frame's axes in the link frame
+    double weight = 1;  // m^2/rad^2: a 1 rad error costs what a sqrt(weight) m marker error does
+};
+
 struct InverseKinematicsOptions {
     // Converged when a step moves no task's target by more than this (m; rad for coordinate tasks).
     double accuracy = 1e-5;
@@ -39,6 +47,8 @@ struct InverseKinematicsOptions {
 struct InverseKinematicsTargets {
     Eigen::Matrix3Xd markers;     // m, ground axes; a column with a NaN is a marker not seen this frame
     Eigen::VectorXd coordinates;  // rad or m
+    // R_GF per orientation task (ground axes); empty when there are none; one with a NaN is not seen.
+    std::vector<Eigen::Matrix3d> orientations = {};
 };
 
 struct InverseKinematicsReport {
@@ -50,6 +60,9 @@ struct InverseKinematicsReport {
     int worstMarker = -1;       // task index of the largest error, -1 when no marker was seen
     double constraintViolation = 0;  // m, largest loop gap
     Eigen::VectorXd markerErrors;    // m, per marker task; NaN where not seen
+    int orientationsSeen = 0;
+    double rmsOrientationError = 0;  // rad, over the orientations seen
+    double maxOrientationError = 0;  // rad
 };
 
 class InverseKinematicsSolver {
@@ -57,7 +70,8 @@ public:
     // Throws sinew::Error naming a task whose marker or coordinate does not exist, a coordinate task on a
     // quaternion, or a weight that is negative or not finite.
     InverseKinematicsSolver(const Model& model, std::vector<Marker> markers, std::vector<MarkerTask> markerTasks,
-                            std::vector<CoordinateTask> coordinateTasks, InverseKinematicsOptions options = {});
+                            std::vector<CoordinateTask> coordinateTasks, InverseKinematicsOptions options = {},
+                            std::vector<OrientationTask> orientationTasks = {});
 
     // Moves q (nq; in: the warm start, usually the previous frame's solution) to the frame's best fit.
     // Throws sinew::Error when the targets' sizes do not match the tasks or q is not finite.
@@ -65,29 +79,39 @@ public:
 
     const std::vector<MarkerTask>& getMarkerTasks() const { return markerTasks_; }
     const std::vector<CoordinateTask>& getCoordinateTasks() const { return coordinateTasks_; }
+    const std::vector<OrientationTask>& getOrientationTasks() const { return orientationTasks_; }
 
 private:
     // Fills r_ and c_ (and A_, G_ with the Jacobian) at q; returns the merit: the tasks' cost plus the
     // loops' gaps, weighted to come first.
     double evaluate(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q, bool withJacobian);
     void addPointJacobian(int link, const Eigen::Vector3d& p_G, double scale, Eigen::Ref<Eigen::MatrixXd> rows);
+    // scale_G x (the link's angular velocity in G)/du.
+    void addAngularJacobian(int link, const Eigen::Matrix3d& scale_G, Eigen::Ref<Eigen::MatrixXd> rows);
+    void evaluateOrientations(const InverseKinematicsTargets& targets, bool withJacobian);
     void addSpeedColumn(int u, const Eigen::VectorXd& q, const Eigen::Ref<const Eigen::VectorXd>& column,
                         Eigen::Ref<Eigen::MatrixXd> rows) const;
     void fillLoopGaps(Eigen::VectorXd& c, Eigen::MatrixXd* G);
     void calcSecondOrderHessian(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q);
     bool isSmallStep(const Eigen::VectorXd& delta) const;
+    void checkFrame(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q) const;
+    void fillReport(InverseKinematicsReport& report) const;
     // A step in the free unknowns as speeds (nu): 0 for locked, coupled and virtual-link speeds.
     Eigen::VectorXd toSpeeds(const Eigen::VectorXd& delta) const;
-    void closeLoops(const InverseKinematicsTargets& targets, Eigen::VectorXd& q);
+    void closeLoops(Eigen::VectorXd& q);
     // The damped, constrained Gauss-Newton step in the free unknowns from the last evaluation, clamped
     // coordinates kept within their ranges by an active set.
     Eigen::VectorXd solveStep(double damping, const Eigen::VectorXd& q);
+    // One pass of it, the entries `fixed` held at fixedStep.
+    Eigen::VectorXd solveKkt(double damping, const std::vector<bool>& fixed, const Eigen::VectorXd& fixedStep);
 
     const Model& model_;
     std::vector<Marker> markers_;
     std::vector<MarkerTask> markerTasks_;
     std::vector<CoordinateTask> coordinateTasks_;
     InverseKinematicsOptions options_;
+    std::vector<OrientationTask> orientationTasks_;
+    std::vector<int> taskLink_;  // per orientation task: its link
     Data data_;
     std::vector<int> taskMarker_;      // per marker task: index into markers_
     std::vector<int> taskCoordinate_;  // per coordinate task: its index in q
@@ -103,9 +127,12 @@ private:
     Eigen::VectorXd multipliers_;    // the loops' Lagrange multipliers from the last step
     bool secondOrder_ = false;        // this solve has left Gauss-Newton for the full Hessian
     Eigen::MatrixXd hessian_;         // of the Lagrangian at the current pose, when secondOrder_
+    Eigen::MatrixXd stepHessian_;     // the step's: A^T A, or hessian_ when secondOrder_ (free x free)
+    Eigen::MatrixXd H_;               // stepHessian_ damped, with the active set's rows fixed
     Eigen::VectorXd lastQ_;  // q of the last evaluation, for the couplers' slopes
     Eigen::VectorXd markerErrors_;
     int markersSeen_ = 0;
+    Eigen::VectorXd orientationErrors_;  // rad, per orientation task; NaN where not seen
 };
 
 // A whole capture through the solver: every frame of `targets` in order, each warm-started from the last

@@ -34,6 +34,10 @@ struct InverseKinematicsRequest {
     double startTime = -std::numeric_limits<double>::infinity();  // s
     double endTime = std::numeric_limits<double>::infinity();
     double accuracy = 1e-5;
+    // Segment frames to follow as well (a BVH capture's, bvh_targets.hpp), with their targets per capture
+    // frame (R_GF, ground axes, in task order); none for a TRC capture.
+    std::vector<OrientationTask> orientationTasks = {};
+    std::vector<std::vector<Eigen::Matrix3d>> orientations = {};
 };
 
 // The setup's tasks, coordinate file, time range and accuracy.
@@ -58,9 +62,10 @@ StorageTable makeInverseKinematicsTable(const Model& model, const InverseKinemat
 StorageTable makeMarkerErrorTable(const InverseKinematicsResult& result);
 
 // Both files of one run, renamed into place together (io/atomic_file.hpp); without writeErrors an errors
-// file of an earlier run at errorsPath is removed, so that it is not taken for this run's.
+// file of an earlier run at errorsPath is removed, so that it is not taken for this run's. decimals >= 0
+// writes the coordinates with that many digits after the point (StorageTable::decimals).
 void writeInverseKinematicsFiles(const Model& model, const InverseKinematicsResult& result, const std::string& motionPath,
-                                 const std::string& errorsPath, bool writeErrors = true);
+                                 const std::string& errorsPath, bool writeErrors = true, int decimals = -1);
 
 // The setup as `opensim-cmd run-tool` runs it: its model (its MarkerSet), capture, tasks and time range;
 // writes the .mot (and <name>_ik_marker_errors.sto when report_errors) into outputDir, or the setup's

@@ -7,7 +7,6 @@
 // their generalized force is the frame's unactuated residual, reported, never hidden; with measured
 // external loads it is what the loads leave unexplained.
 #include <Eigen/Core>
-#include <Eigen/LU>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,38 +14,38 @@
 #include "sinew/core/data.hpp"
 #include "sinew/core/model.hpp"
 #include "sinew/core/spatial.hpp"
-#include "sinew/tensions/active_set_solver.hpp"
 #include "sinew/tensions/distribution_problem.hpp"
-#include "sinew/tensions/lp_solver.hpp"
-#include "sinew/tensions/static_optimization.hpp"
-#include "sinew/tensions/wire_problem.hpp"
+#include "sinew/tensions/problem_columns.hpp"
+#include "sinew/tensions/reserve_columns.hpp"
+#include "sinew/tensions/tension_problem.hpp"
+#include "sinew/tensions/tension_solver.hpp"
 
 namespace sinew {
 
-enum class TensionMethod { Lp, Qp, StaticOptimization };
-const char* toString(TensionMethod method);
-// "lp", "qp" or "so"; throws sinew::Error naming what it got otherwise.
-TensionMethod parseTensionMethod(const std::string& name);
-
 struct TensionAnalysisOptions {
-    TensionMethod method = TensionMethod::Qp;
+    // A TensionMethodRegistry name (tension_method_registry.hpp): "lp", "qp", "so" (static optimization),
+    // "ipopt", or a registered one.
+    std::string method = "qp";
     WireProblemOptions problem;  // LP band, LP cost, QP regulariser
     // (numWires) N: the LP / QP upper bound of each tension. Empty: each wire's max isometric force, which
-    // every wire then needs (thelen2003_muscle); a wire with another law must be given one here.
+    // every wire's law then needs (thelen2003_muscle); a wire with another law must be given one here.
     Eigen::VectorXd maxTension;
-    // Static optimization: (numWires) activation bounds (empty: [0, 1]) and reserve actuators, on DOFs or
-    // (ReserveActuator::body) forces and torques on links, e.g. a floating root's residuals.
+    // Static optimization: (numWires) activation bounds (empty: [0, 1]).
     Eigen::VectorXd minActivation, maxActivation;
+    // Reserve actuators, on DOFs or (ReserveActuator::body) forces and torques on links, e.g. a floating
+    // root's residuals: the first column block after the wires (reserve_columns.hpp), in every method.
     std::vector<ReserveActuator> reserves;
+    // Further column blocks (problem_columns.hpp), after the reserves, in this order.
+    std::vector<std::shared_ptr<ProblemColumns>> columns;
     // Static optimization: a wire's force per unit activation is max isometric force times the fibre's
     // active force-length, force-velocity (at full activation) and cos(pennation), as OpenSim's
     // use_muscle_physiology; false: max isometric force alone.
     bool useMusclePhysiology = true;
-    // Static optimization: the cost Σ activation^exponent (OpenSim's activation_exponent, >= 1; 2 is the
+    // Static optimization and Ipopt: the cost Σ x^exponent (OpenSim's activation_exponent, >= 1; 2 is the
     // active-set QP, others are solved by Ipopt).
     double activationExponent = 2;
-    // A DOF whose largest |generalized force per newton| over all wires and loops is below this times the
-    // frame's largest is unactuated (N m/N or N/N, relative).
+    // A DOF whose largest |generalized force per unit variable| over all wires, loops and blocks is below
+    // this times the frame's largest is unactuated (N m/N or N/N, relative).
     double unactuatedThreshold = 1e-9;
 };
 
@@ -66,7 +65,7 @@ struct TensionFrame {
     // the frame feasible; zero otherwise.
     Eigen::VectorXd reserve;
     std::vector<char> unactuated; // (nu) 1 on DOFs no wire or loop reaches at this frame
-    double torqueError = 0;       // Z = ½ |residual|² over every DOF, unactuated ones included
+    double torqueError = 0;       // Z = ½ |residual|² (Eq. 10) over every DOF, unactuated ones included
     double unactuatedResidual = 0;  // |residual| over the unactuated DOFs
     int activeWires = 0;          // wires pulling (above their lower bound)
     int iterations = 0;           // simplex pivots or active-set steps
@@ -74,10 +73,11 @@ struct TensionFrame {
 };
 
 // One analysis per motion (and per thread): it keeps the solver's warm start from frame to frame and
-// every buffer, so calcFrame allocates nothing but what the solvers themselves do.
+// every buffer, so calcFrame allocates nothing but what the solvers themselves do. Per frame: inverse
+// dynamics, then the frame's problem (TensionProblemBuilder), then the method's solver.
 class TensionAnalysis {
 public:
-    // Throws sinew::Error naming the wire or option that does not fit the model.
+    // Throws sinew::Error naming the wire, reserve, method or option that does not fit the model.
     TensionAnalysis(const Model& model, TensionAnalysisOptions options);
     TensionAnalysis(const TensionAnalysis&) = delete;
     TensionAnalysis& operator=(const TensionAnalysis&) = delete;
@@ -87,38 +87,31 @@ public:
     const TensionFrame& calcFrame(const Eigen::VectorXd& q, const Eigen::VectorXd& u, const Eigen::VectorXd& udot,
                                   const std::vector<SpatialVector>& appliedLinkForces);
     // The next frame starts cold (no warm start): for timing, or after a jump in the motion.
-    void reset();
+    void reset() { solver_->reset(); }
 
     const Model& getModel() const { return model_; }
     const TensionAnalysisOptions& getOptions() const { return options_; }
+    // True for methods in activations (static optimization): TensionFrame::activation is filled.
+    bool solvesActivations() const { return builder_.getSettings().variables == WireVariables::Activation; }
+    // The last frame's solver answer: x = [wires; reserves; options.columns' blocks; loop forces].
+    const DistributionResult& getSolution() const { return result_; }
+    // Where options.columns[k]'s variables start in x.
+    int getColumnStart(int k) const {
+        return builder_.getWireProblemBuilder().getBlockStart(k + (options_.reserves.empty() ? 0 : 1));
+    }
     // The force per unit activation (N) of each wire at the last frame (static optimization).
-    const Eigen::VectorXd& getForcePerActivation() const { return forcePerActivation_; }
+    const Eigen::VectorXd& getForcePerActivation() const { return problem_.forcePerActivation; }
 
 private:
-    void calcReserveColumns();
-    void markUnactuated();
-    void judgeByRigidMotion(int rootLink, Eigen::VectorXd& rowSize);
-    void calcForceMultipliers();
+    void readSolution();
 
     const Model& model_;
     TensionAnalysisOptions options_;
     Data data_;
-    Eigen::VectorXd maxIsometricForce_;  // (numWires) N; static optimization
-    WireProblemBuilder builder_;
-    DistributionProblem problem_;
-    Eigen::MatrixXd J_;                  // (numWires x nu)
-    Eigen::VectorXd forceMultiplier_;    // (numWires) static optimization
-    Eigen::VectorXd forcePerActivation_; // (numWires) N
-    Eigen::MatrixXd reserveColumns_;     // (nu x reserves) generalized force per unit reserve force
-    std::vector<int> virtualLinksOnGround_;  // virtual links whose joints hang from ground
-    std::vector<Eigen::FullPivLU<JointMotion>> virtualLinkMotion_;  // their motion subspaces, factorized per frame
-    Eigen::MatrixXd rigidMotion_;            // (nu x 6) workspace: per root mobility, u moving everything rigidly
-    Eigen::VectorXd unbalanced_;             // (nu) per DOF, the generalized force no wire could balance if unactuated
-    std::unique_ptr<LpSolver> lp_;
-    std::unique_ptr<ActiveSetSolver> qp_;
-    std::unique_ptr<StaticOptimization> so_;
-    DistributionResult distribution_;
-    StaticOptimizationResult soResult_;
+    TensionProblemBuilder builder_;
+    TensionProblem problem_;
+    std::unique_ptr<TensionSolver> solver_;
+    DistributionResult result_;
     TensionFrame frame_;
 };
 

@@ -12,6 +12,7 @@
 #include "sinew/core/model.hpp"
 #include "sinew/io/external_loads.hpp"
 #include "sinew/io/storage_file.hpp"
+#include "sinew/tools/contact_detection.hpp"
 #include "sinew/tools/tension_analysis.hpp"
 
 namespace sinew {
@@ -28,6 +29,10 @@ struct TensionMotionOptions {
     // true: the first derivative of quintic splines through the speeds at every processed row (OpenSim's
     // AnalyzeTool states, which StaticOptimization differentiates again).
     bool accelerationsFromSpeedSplines = false;
+    // Without external loads, the feet the model names (Model::getContacts) get contact forces as unknowns on
+    // the frames they touch the ground (docs/tensions-from-motion.md, "Contact without force plates").
+    bool contact = true;
+    ContactDetectionOptions contactDetection;
     std::function<void(int frame, int frames)> onFrame;  // progress, optional
 };
 
@@ -35,6 +40,9 @@ struct TensionMotionResult {
     StorageTable tensions;     // N, one column per wire (its name)
     StorageTable activations;  // static optimization: one column per wire; empty otherwise
     StorageTable reserves;     // static optimization with reserves: N m or N, one column per reserve
+    // With contact: per frame the root's residual force (N) and moment (N m) and, per contact, in_contact,
+    // force (N), centre of pressure (m) and moment (N m) in ground axes (motion_contacts.hpp); empty otherwise.
+    StorageTable contact;
     // Per frame: status (0 optimal, 1 infeasible, 2 failed, 3 missing input), Z (N² m²), active_wires, iterations,
     // ipopt (1: solved by Ipopt), unactuated_residual (|tau| on DOFs no wire reaches), then <coordinate>_residual and
     // <coordinate>_reserve per DOF (see TensionFrame).

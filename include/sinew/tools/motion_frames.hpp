@@ -1,0 +1,33 @@
+#pragma once
+// The one per-frame loop over a motion that the tools share (inverse dynamics, tensions, moment arms):
+// each row's coordinates, speeds and accelerations and the measured external loads at that instant,
+// handed to a visitor, with progress after each frame.
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "sinew/core/model.hpp"
+#include "sinew/core/spatial.hpp"
+#include "sinew/signal/coordinate_preprocessing.hpp"
+#include "sinew/tools/measured_loads.hpp"
+
+namespace sinew {
+
+struct MotionFrame {
+    int index;     // from 0
+    double time;   // s
+    const Eigen::VectorXd& q;     // (nq)
+    const Eigen::VectorXd& u;     // (nu) the trajectory's qdot row; empty when it has no speeds
+    const Eigen::VectorXd& udot;  // (nu) its qddot row; empty when it has no accelerations
+    // One spatial force per link (Data::F_G convention): the measured loads at (time, q), zero without.
+    const std::vector<SpatialVector>& appliedLinkForces;
+};
+
+// For each row of `trajectory` in order: visit(frame), then onFrame(index + 1, frames) when given. The
+// trajectory's qdot and qddot may have no rows (a motion of coordinates alone: u and udot are then empty).
+// The visitor's sinew::Error propagates.
+void forEachMotionFrame(const Model& model, const CoordinateTrajectory& trajectory, const MeasuredLoads* loads,
+                        const std::function<void(const MotionFrame&)>& visit,
+                        const std::function<void(int frame, int frames)>& onFrame = {});
+
+}  // namespace sinew
