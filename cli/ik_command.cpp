@@ -110,26 +110,14 @@ int runInverseKinematicsCommand(const std::vector<std::string>& args) {
     if (!motion.parent_path().empty()) std::filesystem::create_directories(motion.parent_path());
     const std::string errors = (motion.parent_path() / (motion.stem().string() + "_marker_errors.sto")).string();
     writeInverseKinematicsFiles(model, result, output, errors, true, decimals);
-    std::vector<double> rms, largest, iterations;
-    int unconverged = 0;
-    for (const InverseKinematicsReport& report : result.motion.reports) {
-        rms.push_back(report.rmsMarkerError);
-        largest.push_back(report.maxMarkerError);
-        iterations.push_back(report.iterations);
-        unconverged += report.converged ? 0 : 1;
-    }
-    const auto median = [](std::vector<double> values) {
-        std::sort(values.begin(), values.end());
-        return values[values.size() / 2];
-    };
-    std::printf("%zu frames, %zu markers: per frame RMS error median %.4g m, largest %.4g m; largest single error "
+    const InverseKinematicsSummary summary = summarizeInverseKinematics(result);
+    std::printf("%d frames, %zu markers: per frame RMS error median %.4g m, largest %.4g m; largest single error "
                 "%.4g m; iterations median %g, largest %g; %.3g ms/frame; %d frames not converged\n",
-                rms.size(), result.markers.size(), median(rms), *std::max_element(rms.begin(), rms.end()),
-                *std::max_element(largest.begin(), largest.end()), median(iterations),
-                *std::max_element(iterations.begin(), iterations.end()), 1e3 * seconds / static_cast<double>(rms.size()),
-                unconverged);
+                summary.frames, result.markers.size(), summary.medianRmsError, summary.largestRmsError,
+                summary.largestError, summary.medianIterations, summary.largestIterations,
+                1e3 * seconds / summary.frames, summary.unconverged);
     std::printf("-> %s, %s\n", output.c_str(), errors.c_str());
-    return unconverged == 0 ? 0 : 3;
+    return summary.unconverged == 0 ? 0 : 3;
 }
 
 }  // namespace sinew::cli

@@ -212,6 +212,29 @@ StorageTable makeInverseKinematicsTable(const Model& model, const InverseKinemat
     return table;
 }
 
+InverseKinematicsSummary summarizeInverseKinematics(const InverseKinematicsResult& result) {
+    const std::vector<InverseKinematicsReport>& reports = result.motion.reports;
+    if (reports.empty()) throw Error("inverse kinematics: no frames to summarize");
+    std::vector<double> rms, iterations;
+    InverseKinematicsSummary summary;
+    for (const InverseKinematicsReport& report : reports) {
+        rms.push_back(report.rmsMarkerError);
+        iterations.push_back(report.iterations);
+        summary.largestError = std::max(summary.largestError, report.maxMarkerError);
+        summary.unconverged += report.converged ? 0 : 1;
+    }
+    const auto median = [](std::vector<double>& values) {
+        std::sort(values.begin(), values.end());
+        return values[values.size() / 2];
+    };
+    summary.frames = static_cast<int>(reports.size());
+    summary.medianRmsError = median(rms);
+    summary.largestRmsError = rms.back();
+    summary.medianIterations = median(iterations);
+    summary.largestIterations = iterations.back();
+    return summary;
+}
+
 StorageTable makeMarkerErrorTable(const InverseKinematicsResult& result) {
     StorageTable table;
     table.name = "Model Marker Errors from IK";

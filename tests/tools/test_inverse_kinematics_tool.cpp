@@ -2,11 +2,14 @@
 // own results: Gait10dof18musc's walk (OpenSim's reference IK of subject01_walk.trc).
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <random>
 
+#include "sinew/core/error.hpp"
 #include "sinew/core/forward_simulation.hpp"
 #include "sinew/core/kinematics.hpp"
 #include "support/random_model.hpp"
@@ -180,6 +183,30 @@ TEST(InverseKinematicsTool, FitsTheWholeBodyModelToTheKick) {
     }
     std::printf("kick, first 0.1 s on the whole-body model: joint-centre RMS at most %.3g m\n", worst);
     EXPECT_LE(worst, 0.04);
+}
+
+// The summary `sinew ik` prints: medians and extremes over the frames' reports, worked out by hand.
+TEST(InverseKinematicsTool, SummarizesTheFramesReports) {
+    InverseKinematicsResult result;
+    EXPECT_THROW(summarizeInverseKinematics(result), Error);
+    const std::vector<std::tuple<double, double, int, bool>> frames = {
+        {0.010, 0.020, 7, true}, {0.030, 0.050, 3, true}, {0.020, 0.090, 100, false}};
+    for (const auto& [rms, largest, iterations, converged] : frames) {
+        InverseKinematicsReport report;
+        report.rmsMarkerError = rms;
+        report.maxMarkerError = largest;
+        report.iterations = iterations;
+        report.converged = converged;
+        result.motion.reports.push_back(report);
+    }
+    const InverseKinematicsSummary summary = summarizeInverseKinematics(result);
+    EXPECT_EQ(summary.frames, 3);
+    EXPECT_EQ(summary.medianRmsError, 0.020);
+    EXPECT_EQ(summary.largestRmsError, 0.030);
+    EXPECT_EQ(summary.largestError, 0.090);
+    EXPECT_EQ(summary.medianIterations, 7);
+    EXPECT_EQ(summary.largestIterations, 100);
+    EXPECT_EQ(summary.unconverged, 1);
 }
 
 }  // namespace

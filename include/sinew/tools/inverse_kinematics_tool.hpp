@@ -61,6 +61,17 @@ StorageTable makeInverseKinematicsTable(const Model& model, const InverseKinemat
 // _ik_marker_errors.sto, plus the markers seen, the iterations and whether the solve converged.
 StorageTable makeMarkerErrorTable(const InverseKinematicsResult& result);
 
+// What a fitted motion's frames add up to, as `sinew ik` prints it.
+struct InverseKinematicsSummary {
+    int frames = 0;
+    double medianRmsError = 0, largestRmsError = 0;  // m, of the per-frame RMS marker (or joint-centre) errors
+    double largestError = 0;                          // m, of any one marker in any frame
+    double medianIterations = 0, largestIterations = 0;
+    int unconverged = 0;                              // frames that ended on a budget, not converged
+};
+// Throws sinew::Error for a result without frames.
+InverseKinematicsSummary summarizeInverseKinematics(const InverseKinematicsResult& result);
+
 // Both files of one run, renamed into place together (io/atomic_file.hpp); without writeErrors an errors
 // file of an earlier run at errorsPath is removed, so that it is not taken for this run's. decimals >= 0
 // writes the coordinates with that many digits after the point (StorageTable::decimals).
