@@ -18,12 +18,6 @@ namespace {
 // Rows of two tables written for the same instants may differ in the last digits a writer keeps.
 constexpr double kSameTime = 1e-6;  // s
 
-bool hasQuaternions(const Model& model) {
-    for (const Joint& joint : model.getJoints())
-        if (joint.type == JointType::Ball || joint.type == JointType::Free) return true;
-    return false;
-}
-
 std::string formatTime(double t) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", t);
@@ -50,22 +44,9 @@ PoseTable readPoseTable(const Model& model, const std::string& path) {
     const StorageTable table = readStorageFile(path);
     PoseTable poses;
     poses.file = path;
-    if (!hasQuaternions(model)) {
-        const CoordinateSamples samples = readCoordinateSamples(model, table);
-        poses.times = samples.times;
-        poses.q = samples.q;
-        return poses;
-    }
-    if (table.inDegrees)
-        throw Error(table.where + ": inDegrees=yes, but model '" + model.getName() +
-                    "' has ball or free joints, whose quaternion columns have no degrees");
-    const std::vector<int> columnOf = matchStorageColumns(table, getCoordinateNames(model), ExtraColumns::Refuse);
-    const Eigen::Index rows = static_cast<Eigen::Index>(table.times.size());
-    poses.times = Eigen::Map<const Eigen::VectorXd>(table.times.data(), rows);
-    poses.q.resize(rows, model.getNumQ());
-    for (Eigen::Index r = 0; r < rows; ++r)
-        for (int c = 0; c < model.getNumQ(); ++c)
-            poses.q(r, c) = table.rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(columnOf[static_cast<std::size_t>(c)])];
+    const CoordinateSamples samples = readCoordinateSamples(model, table);
+    poses.times = samples.times;
+    poses.q = samples.q;
     return poses;
 }
 

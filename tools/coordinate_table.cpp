@@ -3,21 +3,64 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sinew/core/coordinate_rates.hpp"
 #include "sinew/core/error.hpp"
 
 namespace sinew {
 namespace {
 
 constexpr double kMaxCoordinateMagnitude = 1e6;
+// A stored quaternion is unit up to its printed digits (4 decimals: |q| within 2e-4 of 1); further off, the
+// columns are not a quaternion (a wrong column order, angles in quaternion columns).
+constexpr double kQuaternionNormTolerance = 0.01;
+
+bool isQuaternionComponent(const Model& model, int q) {
+    const Joint& joint = model.getJoint(model.getCoordinates()[static_cast<std::size_t>(q)].joint);
+    return (joint.type == JointType::Ball || joint.type == JointType::Free) && q < joint.qStart + 4;
+}
+
+// q and -q are one rotation, and a table may switch between them (IK output, a BVH conversion); the
+// splines need the branch that varies continuously, so each row takes the sign nearer the previous row's.
+// Rows with a non-finite entry are left for keepFiniteRows to flag.
+void makeQuaternionsContinuous(const Model& model, const std::string& where, Eigen::MatrixXd& q) {
+    for (const Joint& joint : model.getJoints()) {
+        if (joint.type != JointType::Ball && joint.type != JointType::Free) continue;
+        Eigen::Index previous = -1;
+        for (Eigen::Index r = 0; r < q.rows(); ++r) {
+            auto quaternion = q.block<1, 4>(r, joint.qStart);
+            if (!quaternion.allFinite()) continue;
+            const double norm = quaternion.norm();
+            if (std::abs(norm - 1) > kQuaternionNormTolerance)
+                throw Error(where + " (the labels; rows counted from 0 below them): row " + std::to_string(r) +
+                            ": the quaternion " + joint.name + "_qw.." + joint.name + "_qz has norm " +
+                            std::to_string(norm) + ", expected 1 (to within " +
+                            std::to_string(kQuaternionNormTolerance) + ")");
+            if (previous >= 0 && quaternion.dot(q.block<1, 4>(previous, joint.qStart)) < 0) quaternion *= -1;
+            previous = r;
+        }
+    }
+}
+
+// Unit quaternions and the speeds u, u̇ in place of the quaternions' component rates (nq -> nu columns).
+void convertQuaternionRates(const Model& model, CoordinateTrajectory& trajectory) {
+    Eigen::MatrixXd u(trajectory.times.size(), model.getNumU()), udot(trajectory.times.size(), model.getNumU());
+    Eigen::VectorXd frameU, frameUdot;
+    for (Eigen::Index i = 0; i < trajectory.times.size(); ++i) {
+        calcSpeedsFromCoordinateRates(model, trajectory.q.row(i).transpose(), trajectory.qdot.row(i).transpose(),
+                                      trajectory.qddot.row(i).transpose(), frameU, frameUdot);
+        u.row(i) = frameU.transpose();
+        udot.row(i) = frameUdot.transpose();
+        for (const Joint& joint : model.getJoints())
+            if (joint.type == JointType::Ball || joint.type == JointType::Free)
+                trajectory.q.block<1, 4>(i, joint.qStart).normalize();
+    }
+    trajectory.qdot = std::move(u);
+    trajectory.qddot = std::move(udot);
+}
 
 }  // namespace
 
 CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& table) {
-    for (const Joint& joint : model.getJoints())
-        if (joint.type == JointType::Ball || joint.type == JointType::Free)
-            throw Error("model '" + model.getName() + "': joint '" + joint.name + "' is a " + toString(joint.type) +
-                        " joint, whose quaternion cannot be read from a coordinates table (motion files need "
-                        "custom, pin or weld joints)");
     const std::vector<Coordinate>& coordinates = model.getCoordinates();
     std::vector<std::string> names;
     for (const Coordinate& c : coordinates) names.push_back(c.name);
@@ -32,11 +75,15 @@ CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& 
     samples.where = table.where;
     for (Eigen::Index c = 0; c < n; ++c) {
         const std::size_t column = static_cast<std::size_t>(columnOf[static_cast<std::size_t>(c)]);
-        // OpenSim converts only rotational coordinates (Storage conversion by Coordinate::getMotionType).
-        const bool degrees = table.inDegrees && coordinates[static_cast<std::size_t>(c)].motionType == MotionType::Rotational;
+        // OpenSim converts only rotational coordinates (Storage conversion by Coordinate::getMotionType); a
+        // quaternion's components are no angles.
+        const Coordinate& coordinate = coordinates[static_cast<std::size_t>(c)];
+        const bool degrees = table.inDegrees && coordinate.motionType == MotionType::Rotational &&
+                             !isQuaternionComponent(model, static_cast<int>(c));
         for (Eigen::Index r = 0; r < rows; ++r)
             samples.q(r, c) = table.rows[static_cast<std::size_t>(r)][column] * (degrees ? M_PI / 180 : 1.0);
     }
+    makeQuaternionsContinuous(model, table.where, samples.q);
     return samples;
 }
 
@@ -53,7 +100,9 @@ CoordinateTrajectory preprocessCoordinateSamples(const Model& model, const Coord
                     std::to_string(samples.times[0]) + ", " + std::to_string(samples.times[rows - 1]) + "] s");
     for (const Coordinate& c : model.getCoordinates()) options.columnNames.push_back(c.name);
     try {
-        return preprocessCoordinates(samples.times, samples.q, options);
+        CoordinateTrajectory trajectory = preprocessCoordinates(samples.times, samples.q, options);
+        if (hasQuaternionJoints(model)) convertQuaternionRates(model, trajectory);
+        return trajectory;
     } catch (const Error& e) {
         if (samples.where.empty()) throw;
         throw Error(samples.where + " (the labels; rows counted from 0 below them): " + e.what());

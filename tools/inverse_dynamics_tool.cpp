@@ -15,15 +15,28 @@
 namespace sinew {
 namespace {
 
-std::string getForceColumnName(const Coordinate& c) {
-    return c.name + (c.motionType == MotionType::Rotational ? "_moment" : "_force");
+// One per speed, as OpenSim names them: "<coordinate>_moment" for rotational coordinates, "<coordinate>_force"
+// otherwise; a ball or free joint's angular speeds j_wx.. give j_wx_moment.., a free joint's linear ones
+// j_vx_force...
+std::vector<std::string> getGeneralizedForceNames(const Model& model) {
+    std::vector<std::string> names = getSpeedNames(model);
+    std::size_t k = 0;
+    for (const Joint& joint : model.getJoints()) {
+        for (int i = 0; i < joint.nu; ++i, ++k) {
+            const bool quaternion = joint.type == JointType::Ball || joint.type == JointType::Free;
+            const bool rotational =
+                quaternion ? i < 3
+                           : model.getCoordinates()[static_cast<std::size_t>(joint.qStart + i)].motionType == MotionType::Rotational;
+            names[k] += rotational ? "_moment" : "_force";
+        }
+    }
+    return names;
 }
 
 }  // namespace
 
 StorageTable runInverseDynamics(const Model& model, const StorageTable& coordinates, const ExternalLoads* loads,
                                 const InverseDynamicsOptions& options) {
-    const std::vector<Coordinate>& modelCoordinates = model.getCoordinates();
     const CoordinateSamples samples = readCoordinateSamples(model, coordinates);
     const CoordinateTrajectory trajectory = preprocessCoordinateSamples(model, samples, options.lowpassCutoffHz,
                                                                         options.startTime, options.finalTime);
@@ -33,7 +46,7 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
 
     StorageTable result;
     result.name = "Inverse Dynamics Generalized Forces";
-    for (const Coordinate& c : modelCoordinates) result.columns.push_back(getForceColumnName(c));
+    result.columns = getGeneralizedForceNames(model);
     Data data(model);
     Eigen::VectorXd tau(model.getNumU());
     forEachMotionFrame(
@@ -44,10 +57,10 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
                 Eigen::Index k = 0;
                 while (std::isfinite(tau[k])) ++k;
                 throw Error("inverse dynamics at t = " + std::to_string(frame.time) + " s (frame " +
-                            std::to_string(frame.index + 1) + "): the generalized force of coordinate '" +
-                            modelCoordinates[static_cast<std::size_t>(k)].name + "' is not finite (q " +
-                            std::to_string(frame.q[k]) + ", speed " + std::to_string(frame.u[k]) + ", acceleration " +
-                            std::to_string(frame.udot[k]) + "; check the motion and external loads there)");
+                            std::to_string(frame.index + 1) + "): the generalized force '" +
+                            result.columns[static_cast<std::size_t>(k)] + "' is not finite (speed " +
+                            std::to_string(frame.u[k]) + ", acceleration " + std::to_string(frame.udot[k]) +
+                            "; check the motion and external loads there)");
             }
             result.times.push_back(frame.time);
             result.rows.emplace_back(tau.data(), tau.data() + tau.size());

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "sinew/signal/coordinate_preprocessing.hpp"
+#include "sinew/core/coordinate_rates.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/signal/smoothing_spline.hpp"
 #include "sinew/tools/coordinate_table.hpp"
@@ -188,6 +189,9 @@ TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& m
     CoordinateTrajectory trajectory = preprocessCoordinateSamples(model, samples, options.lowpassCutoffHz,
                                                                   options.startTime, options.finalTime);
     if (options.accelerationsFromSpeedSplines) {
+        if (hasQuaternionJoints(model))
+            throw Error("tensions: accelerations from speed splines (OpenSim's StaticOptimization) need scalar "
+                        "coordinates, and model '" + model.getName() + "' has ball or free joints");
         const std::vector<SmoothingSpline> speedSplines = fitSpeedSplines(trajectory);
         for (Eigen::Index i = 0; i < trajectory.times.size(); ++i)
             for (Eigen::Index j = 0; j < trajectory.qddot.cols(); ++j)

@@ -1,6 +1,8 @@
 #pragma once
 // A motion table (.mot/.sto: IK results, simulation states) read onto a model's coordinates: columns
-// matched by name, rotational coordinates of an inDegrees table converted to radians.
+// matched by name, rotational coordinates of an inDegrees table converted to radians. Ball and free joints
+// read as their quaternion columns (j_qw j_qx j_qy j_qz, never converted: no angles) and a free joint's
+// position (j_x j_y j_z, m).
 #include <Eigen/Core>
 #include <string>
 
@@ -16,15 +18,19 @@ struct CoordinateSamples {
     std::string where;      // "file:line" of the table's labels, for messages; empty for none
 };
 
-// The model's coordinates must all be scalar (custom, pin and weld joints: q = u); the table's columns must
-// be exactly the model's coordinates, else a sinew::Error at the table's file:line lists what is missing
-// or extra.
+// The table's columns must be exactly the model's coordinates, else a sinew::Error at the table's file:line
+// lists what is missing or extra. Each quaternion must be unit to within 0.01 (an error names the row) and
+// takes, row by row, the sign of q or -q nearer the previous row's, so that its components vary
+// continuously.
 CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& table);
 
 // q, q̇, q̈ from the samples as OpenSim's tools derive them (coordinate_preprocessing.hpp): cutoff in Hz
 // (negative: no filtering), the time range in s; errors name the table's file, the row and the model's
 // coordinates. The frames never reach beyond the samples' own times: the padding filtering adds is not a
-// result (OpenSim 4.4 reports the motion's or the setup's range).
+// result (OpenSim 4.4 reports the motion's or the setup's range). With ball or free joints, each
+// quaternion's four components are splined like any coordinate, then the result's q holds the unit
+// quaternions and its qdot and qddot the speeds u and u̇ (nu columns, calcSpeedsFromCoordinateRates);
+// without, q̇ = u.
 CoordinateTrajectory preprocessCoordinateSamples(const Model& model, const CoordinateSamples& samples,
                                                  double lowpassCutoffHz, double startTime, double finalTime);
 

@@ -22,10 +22,11 @@ struct InverseDynamicsOptions {
     std::function<void(int frame, int frames)> onFrame;  // progress, optional
 };
 
-// Generalized forces per frame, one column per coordinate named as OpenSim names them ("<coordinate>_moment"
-// for rotational coordinates, "<coordinate>_force" otherwise). The model's coordinates must all be scalar
-// (custom, pin and weld joints: q = u); the table's columns must be exactly the model's coordinates (the
-// error lists what is missing or extra); rotational columns of an inDegrees table are converted.
+// Generalized forces per frame, one column per speed named as OpenSim names them ("<coordinate>_moment"
+// for rotational coordinates, "<coordinate>_force" otherwise; a ball or free joint j: j_wx_moment..
+// j_wz_moment about F's axes, a free joint's j_vx_force.. along them). The table's columns must be exactly
+// the model's coordinates (the error lists what is missing or extra; quaternions as coordinate_table.hpp
+// reads them); rotational columns of an inDegrees table are converted.
 StorageTable runInverseDynamics(const Model& model, const StorageTable& coordinates, const ExternalLoads* loads,
                                 const InverseDynamicsOptions& options);
 

@@ -54,8 +54,8 @@ struct TensionMotionResult {
     std::vector<int> missingRows;
 };
 
-// The model's coordinates must all be scalar and the table's columns exactly the model's coordinates
-// (readCoordinateSamples says what is missing or extra). Throws sinew::Error when the finite rows left
+// The table's columns must be exactly the model's coordinates, quaternions included (readCoordinateSamples
+// says what is missing or extra). Throws sinew::Error when the finite rows left
 // are too few for the splines.
 TensionMotionResult runTensionAnalysis(const Model& model, const StorageTable& motion, const ExternalLoads* loads,
                                        const TensionMotionOptions& options);
