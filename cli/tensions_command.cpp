@@ -32,6 +32,8 @@ const char* kUsage =
     "  --lowpass HZ             low-pass cut-off for the coordinates (default: no filtering)\n"
     "  --start T, --end T       time range, s (default: the whole motion)\n"
     "  --tolerance TAU          LP torque band, N m (default 1e-3)\n"
+    "  --max-tension N          every wire's strength, N (default: each wire's own: its strength or\n"
+    "                           its force law's max isometric force)\n"
     "  -o TENSIONS.sto          output file\n";
 
 std::string withSuffix(const std::string& path, const std::string& suffix) {
@@ -39,10 +41,23 @@ std::string withSuffix(const std::string& path, const std::string& suffix) {
     return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
 }
 
+void printSummary(const std::string& method, const TensionMotionSummary& summary) {
+    std::printf("summary (%s): %d frames solved; per frame %.4g s median, %.4g s mean (inverse dynamics, J and "
+                "the distribution); Z median %.4g, mean %.4g, max %.4g N^2 m^2\n",
+                method.c_str(), summary.solvedFrames, summary.medianSeconds, summary.meanSeconds, summary.medianZ,
+                summary.meanZ, summary.maxZ);
+    if (summary.contactFrames > 0)
+        std::printf("contact (%s): %d frames with a foot down; root residual force median %.3g N, max %.3g N "
+                    "(%.2f %% of the body weight, %.1f N)\n",
+                    method.c_str(), summary.contactFrames, summary.medianRootResidual, summary.maxRootResidual,
+                    100 * summary.maxRootResidual / summary.bodyWeight, summary.bodyWeight);
+}
+
 }  // namespace
 
 int runTensions(const std::vector<std::string>& args) {
     std::string modelPath, motionPath, loadsPath, output, method;
+    double maxTension = 0;
     TensionMotionOptions options;
     ArgumentReader reader(args, kUsage);
     while (reader.next()) {
@@ -53,6 +68,10 @@ int runTensions(const std::vector<std::string>& args) {
         else if (reader.is("--start")) options.startTime = reader.number();
         else if (reader.is("--end")) options.finalTime = reader.number();
         else if (reader.is("--tolerance")) options.analysis.problem.torqueTolerance = reader.number();
+        else if (reader.is("--max-tension")) {
+            maxTension = reader.number();
+            if (!(maxTension > 0)) throw Error("--max-tension expects a strength > 0 N, got " + reader.value());
+        }
         else if (reader.is("-o", "--output")) output = reader.value();
         else reader.takePositional({&modelPath, &motionPath});
     }
@@ -61,6 +80,7 @@ int runTensions(const std::vector<std::string>& args) {
     TensionMethodRegistry::global().get(method);  // an unknown method fails before the model loads
     options.analysis.method = method;
     const Model model = loadModel(modelPath, [](const std::string& note) { std::printf("%s\n", note.c_str()); });
+    if (maxTension > 0) options.analysis.maxTension = Eigen::VectorXd::Constant(model.getNumWires(), maxTension);
     std::optional<ExternalLoads> loads;
     if (!loadsPath.empty()) loads = readExternalLoads(loadsPath);
     std::optional<Progress> progress;
@@ -107,6 +127,7 @@ int runTensions(const std::vector<std::string>& args) {
                     result.missingRows.size(), withSuffix(output, "_report").c_str());
     if (result.ipoptFrames > 0)
         std::printf("%d frames solved by Ipopt (report column ipopt = 1)\n", result.ipoptFrames);
+    printSummary(method, summarizeTensionMotion(model, result));
     return 0;
 }
 

@@ -4,7 +4,7 @@
 
 #include "sinew/core/error.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
-#include "sinew/core/kinematics.hpp"
+#include "sinew/core/loop_force_columns.hpp"
 
 namespace sinew {
 
@@ -24,29 +24,6 @@ JointReactionsData::JointReactionsData(const Model& model)
 }
 
 namespace {
-
-// Adds the force f_G (N, ground axes) acting at point p_B of `link` to that link's entry of F (moment about
-// the link's origin).
-void addPointForce(const Data& data, int link, const Eigen::Vector3d& p_B, const Eigen::Vector3d& f_G,
-                   std::vector<SpatialVector>& F) {
-    const std::size_t b = static_cast<std::size_t>(link);
-    F[b].head<3>() += (data.R_GB[b] * p_B).cross(f_G);
-    F[b].tail<3>() += f_G;
-}
-
-// Column 3 k + c: the generalized forces of a unit force e_c on loop k's link B at p_B and -e_c on its link
-// A at p_A (docs/joint-loads.md, eq. 2). Needs calcPositionKinematics.
-void calcLoopColumns(const Model& model, Data& data, Eigen::MatrixXd& columns) {
-    for (int k = 0; k < model.getNumLoops(); ++k) {
-        const Loop& loop = model.getLoop(k);
-        for (int c = 0; c < 3; ++c) {
-            for (SpatialVector& F : data.scratchF_G) F.setZero();
-            addPointForce(data, loop.linkB, loop.p_B, Eigen::Vector3d::Unit(c), data.scratchF_G);
-            addPointForce(data, loop.linkA, loop.p_A, -Eigen::Vector3d::Unit(c), data.scratchF_G);
-            calcGeneralizedForcesFromLinkForces(model, data, columns.col(3 * k + c));
-        }
-    }
-}
 
 void checkSizes(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& u, const Eigen::VectorXd& udot,
                 const Eigen::VectorXd& tau, const std::vector<SpatialVector>& linkForces) {
@@ -74,17 +51,16 @@ void calcJointReactions(const Model& model, Data& data, const Eigen::VectorXd& q
         // forces (docs/joint-loads.md, eq. 3).
         calcInverseDynamics(model, data, q, u, udot, appliedLinkForces, reactions.residual);
         reactions.residual -= appliedGeneralizedForces;
-        calcLoopColumns(model, data, reactions.loopColumns);
+        for (int k = 0; k < model.getNumLoops(); ++k)
+            calcLoopForceColumns(model, data, k, reactions.loopColumns.middleCols<3>(3 * k));
         reactions.loopSolver.compute(reactions.loopColumns);
         reactions.loopForces = reactions.loopSolver.solve(reactions.residual);
         for (int k = 0; k < model.getNumLoops(); ++k) {
-            const Loop& loop = model.getLoop(k);
             const std::size_t l = static_cast<std::size_t>(k);
             reactions.loopForce_G[l] = reactions.loopForces.segment<3>(3 * k);
-            const Eigen::Matrix3d& R_GB = data.R_GB[static_cast<std::size_t>(loop.linkB)];
+            const Eigen::Matrix3d& R_GB = data.R_GB[static_cast<std::size_t>(model.getLoop(k).linkB)];
             reactions.loopForce_B[l] = R_GB.transpose() * reactions.loopForce_G[l];
-            addPointForce(data, loop.linkB, loop.p_B, reactions.loopForce_G[l], reactions.linkForces_G);
-            addPointForce(data, loop.linkA, loop.p_A, -reactions.loopForce_G[l], reactions.linkForces_G);
+            addLoopForce(model, data, k, reactions.loopForce_G[l], reactions.linkForces_G);
         }
     }
     // With every external force in, the subtree net force (inertial less applied) that inverse dynamics

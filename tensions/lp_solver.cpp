@@ -179,6 +179,12 @@ void LpSolver::solve(const DistributionProblem& problem, DistributionResult& res
                 backend_->simplex.dual();
                 status = backend_->simplex.status();
                 result.iterations += backend_->simplex.numberIterations();
+                // Within Clp's tolerances of feasible and still refused from the cold start: the frame needs
+                // the tiny reserves phase 1 found, and says so with them (its x is phase 1's).
+                if (status != 0) {
+                    result.status = DistributionStatus::Infeasible;
+                    result.reserve = reserve;
+                }
             }
         }
     }

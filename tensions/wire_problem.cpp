@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "sinew/core/error.hpp"
-#include "sinew/core/kinematics.hpp"
+#include "sinew/core/loop_force_columns.hpp"
 
 namespace sinew {
 namespace {
@@ -18,15 +18,6 @@ void addPathToRoot(const Model& model, int link, std::vector<bool>& rows) {
         const Joint& joint = model.getJoint(link);
         for (int k = 0; k < joint.nu; ++k) rows[static_cast<std::size_t>(joint.uStart + k)] = true;
     }
-}
-
-// Adds force_G applied at the point p_B of `link` to Data::scratchF_G (moment about the link's origin);
-// nothing on ground.
-void addPointForce(Data& data, int link, const Eigen::Vector3d& p_B, const Eigen::Vector3d& force_G) {
-    if (link == kGround) return;
-    SpatialVector& F = data.scratchF_G[static_cast<std::size_t>(link)];
-    F.head<3>() += (data.R_GB[static_cast<std::size_t>(link)] * p_B).cross(force_G);
-    F.tail<3>() += force_G;
 }
 
 // Zeroes the entries of column j that are roundoff (below 1e-12 of its largest). Internal forces give the
@@ -139,19 +130,14 @@ void WireProblemBuilder::update(Data& data, const Eigen::MatrixXd& J, const Eige
         block.setVariables(wireWeight, problem.lower.segment(start, size), problem.upper.segment(start, size),
                            problem.cost.segment(start, size), problem.weight.segment(start, size));
     }
-    // Loop columns: the generalized forces of a unit force e_c on link B at its loop point and -e_c on link A
-    // at its own, i.e. the transposed loop-constraint Jacobian.
+    // Loop columns: the transposed loop-constraint Jacobian, in the fixed pattern.
     const int loopStart = getBlocksEnd();
-    Eigen::VectorXd column(nu);
+    Eigen::MatrixXd columns(nu, 3);
     for (int l = 0; l < model_.getNumLoops(); ++l) {
-        const Loop& loop = model_.getLoop(l);
+        calcLoopForceColumns(model_, data, l, columns);
         for (int c = 0; c < 3; ++c) {
-            for (SpatialVector& F : data.scratchF_G) F.setZero();
-            addPointForce(data, loop.linkB, loop.p_B, Eigen::Vector3d::Unit(c));
-            addPointForce(data, loop.linkA, loop.p_A, -Eigen::Vector3d::Unit(c));
-            calcGeneralizedForcesFromLinkForces(model_, data, column);
             const int j = loopStart + 3 * l + c;
-            for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, j); it; ++it) it.valueRef() = column[it.row()];
+            for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, j); it; ++it) it.valueRef() = columns(it.row(), c);
             dropRoundoff(problem.A, j);
         }
     }

@@ -1,6 +1,7 @@
 #include "sinew/tools/contact_detection.hpp"
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "sinew/core/data.hpp"
@@ -9,6 +10,8 @@
 
 namespace sinew {
 namespace {
+
+constexpr double kNoHeight = std::numeric_limits<double>::infinity();
 
 void checkInputs(const Model& model, const Eigen::MatrixXd& q, const Eigen::MatrixXd& u,
                  const ContactDetectionOptions& options) {
@@ -21,6 +24,14 @@ void checkInputs(const Model& model, const Eigen::MatrixXd& q, const Eigen::Matr
         throw Error("contact detection: model '" + model.getName() + "' has no gravity, so the ground has no 'up'");
     if (!(options.heightThreshold >= 0) || !(options.speedThreshold >= 0))
         throw Error("contact detection: the height and speed thresholds must be >= 0");
+}
+
+// The lowest height a slow sole vertex reaches: a foot passing low but fast (a toe swept under the body by an
+// inverse-kinematics fit) is no evidence of the floor, a resting one is. The lowest of all when none is slow.
+double estimateFloor(const Eigen::MatrixXd& height, const Eigen::MatrixXd& speed, const ContactDetectionOptions& options) {
+    if (height.size() == 0) return 0;
+    const double lowestSlow = (speed.array() <= options.speedThreshold).select(height, kNoHeight).minCoeff();
+    return lowestSlow < kNoHeight ? lowestSlow : height.minCoeff();
 }
 
 }  // namespace
@@ -50,8 +61,7 @@ ContactDetection detectContacts(const Model& model, const Eigen::MatrixXd& q, co
         }
     }
     ContactDetection detection;
-    detection.floorHeight = std::isnan(options.floorHeight) ? (numVertices > 0 && frames > 0 ? height.minCoeff() : 0.0)
-                                                            : options.floorHeight;
+    detection.floorHeight = std::isnan(options.floorHeight) ? estimateFloor(height, speed, options) : options.floorHeight;
     detection.inContact.assign(static_cast<std::size_t>(frames), std::vector<char>(contacts.size(), 0));
     detection.lowestHeight.resize(frames, static_cast<Eigen::Index>(contacts.size()));
     detection.lowestSpeed.resize(frames, static_cast<Eigen::Index>(contacts.size()));

@@ -1,5 +1,7 @@
 #include "sinew/tools/tension_motion.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -70,8 +72,10 @@ public:
         std::vector<std::string> wireNames;
         reportColumns_ = {"status", "Z", "active_wires", "iterations", "ipopt", "unactuated_residual"};
         for (const Wire& wire : model.getWires()) wireNames.push_back(wire.name);
-        for (const Coordinate& c : model.getCoordinates()) reportColumns_.push_back(c.name + "_residual");
-        for (const Coordinate& c : model.getCoordinates()) reportColumns_.push_back(c.name + "_reserve");
+        // Per DOF (speed): a ball joint j's j_wx_residual.., a scalar coordinate's own name.
+        const std::vector<std::string> dofNames = getSpeedNames(model);
+        for (const std::string& dof : dofNames) reportColumns_.push_back(dof + "_residual");
+        for (const std::string& dof : dofNames) reportColumns_.push_back(dof + "_reserve");
         result.tensions = makeTable("Wire tensions (" + options.analysis.method + ")", wireNames);
         result.report = makeTable("Tension report", reportColumns_);
         if (!staticOptimization) return;
@@ -169,7 +173,10 @@ TensionMotionResult analyseTrajectory(const Model& model, const CoordinateTrajec
             // After resampling (--lowpass over a gap) a frame may fall on a missing row's time: it stays flagged.
             if (nextMissing > 0 && sampleTimes[missing[nextMissing - 1]] == motion.time) return;
             if (contacts) contacts->prepareFrame(motion.index);
+            const auto start = std::chrono::steady_clock::now();
             const TensionFrame& frame = solveFrame(analysis, motion);
+            result.frameSeconds.push_back(
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
             tables.appendFrame(motion.time, frame);
             if (contacts) contacts->appendFrame(motion, analysis, frame);
         },
@@ -213,6 +220,59 @@ TensionMotionResult runTensionAnalysis(const Model& model, const CoordinateTraje
                     " for model '" + model.getName() + "' (nq " + std::to_string(model.getNumQ()) + ", nu " +
                     std::to_string(model.getNumU()) + ")");
     return analyseTrajectory(model, states, states.times, {}, loads, options);
+}
+
+namespace {
+
+double median(std::vector<double> values) {
+    if (values.empty()) return 0;
+    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    return *middle;
+}
+
+double mean(const std::vector<double>& values) {
+    double sum = 0;
+    for (double value : values) sum += value;
+    return values.empty() ? 0 : sum / static_cast<double>(values.size());
+}
+
+std::size_t findColumn(const StorageTable& table, const std::string& name) {
+    const auto it = std::find(table.columns.begin(), table.columns.end(), name);
+    if (it == table.columns.end()) throw Error("tension summary: table '" + table.name + "' has no column " + name);
+    return static_cast<std::size_t>(it - table.columns.begin());
+}
+
+}  // namespace
+
+TensionMotionSummary summarizeTensionMotion(const Model& model, const TensionMotionResult& result) {
+    TensionMotionSummary summary;
+    summary.frames = static_cast<int>(result.report.times.size());
+    const std::size_t status = findColumn(result.report, "status"), z = findColumn(result.report, "Z");
+    std::vector<double> zs;
+    for (const std::vector<double>& row : result.report.rows)
+        if (row[status] != kMissingInputStatus) zs.push_back(row[z]);
+    summary.solvedFrames = static_cast<int>(zs.size());
+    summary.medianSeconds = median(result.frameSeconds);
+    summary.meanSeconds = mean(result.frameSeconds);
+    summary.medianZ = median(zs);
+    summary.meanZ = mean(zs);
+    summary.maxZ = zs.empty() ? 0 : *std::max_element(zs.begin(), zs.end());
+    double mass = 0;
+    for (const Link& link : model.getLinks()) mass += link.mass;
+    summary.bodyWeight = mass * model.getGravity().norm();
+    if (result.contact.columns.empty()) return summary;
+    std::vector<std::size_t> flags;
+    for (const Contact& contact : model.getContacts()) flags.push_back(findColumn(result.contact, contact.name + "_in_contact"));
+    const std::size_t residual = findColumn(result.contact, "root_force_residual");
+    std::vector<double> residuals;
+    for (const std::vector<double>& row : result.contact.rows)
+        if (std::any_of(flags.begin(), flags.end(), [&](std::size_t c) { return row[c] > 0; }))
+            residuals.push_back(row[residual]);
+    summary.contactFrames = static_cast<int>(residuals.size());
+    summary.medianRootResidual = median(residuals);
+    summary.maxRootResidual = residuals.empty() ? 0 : *std::max_element(residuals.begin(), residuals.end());
+    return summary;
 }
 
 }  // namespace sinew

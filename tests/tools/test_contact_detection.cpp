@@ -46,9 +46,12 @@ TEST(ContactDetection, PlantedFootAlwaysAndSwingingFootUntilItRisesOrMoves) {
     // The right sole's vertex (x, y, -0.9) under the hip at height 0.9, turned by theta about x: height
     // 0.9 + y sin(theta) - 0.9 cos(theta), speed |rate| sqrt(y^2 + 0.81). The left sole stays at 0.
     const double ys[] = {-0.04, -0.04, 0.04, 0.04};
+    // The floor: the lowest height of a vertex slower than the speed threshold (the left sole's 0 included).
     double floor = 0;
     for (Eigen::Index i = 0; i < swing.theta.size(); ++i)
-        for (const double y : ys) floor = std::fmin(floor, 0.9 + y * std::sin(swing.theta[i]) - 0.9 * std::cos(swing.theta[i]));
+        for (const double y : ys)
+            if (std::fabs(swing.rate[i]) * std::sqrt(y * y + 0.81) <= options.speedThreshold)
+                floor = std::fmin(floor, 0.9 + y * std::sin(swing.theta[i]) - 0.9 * std::cos(swing.theta[i]));
     EXPECT_NEAR(detection.floorHeight, floor, 1e-12);
     int rightFrames = 0;
     for (Eigen::Index i = 0; i < swing.theta.size(); ++i) {

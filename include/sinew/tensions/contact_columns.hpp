@@ -34,7 +34,7 @@ struct ContactWrench {
 class ContactColumns : public ProblemColumns {
 public:
     // Throws sinew::Error when the model's gravity is zero (no "up" for the ground) or pyramidEdges < 3.
-    explicit ContactColumns(const Model& model, int pyramidEdges = 4, double cost = 1e-3);
+    explicit ContactColumns(const Model& model, int pyramidEdges = 8, double cost = 1e-3);
 
     // Which contacts touch the ground at the next frame (contacts; e.g. from detectContacts). None at first.
     // Throws sinew::Error when the size is not the model's number of contacts.

@@ -45,14 +45,30 @@ struct TensionMotionResult {
     StorageTable contact;
     // Per frame: status (0 optimal, 1 infeasible, 2 failed, 3 missing input), Z (N² m²), active_wires, iterations,
     // ipopt (1: solved by Ipopt), unactuated_residual (|tau| on DOFs no wire reaches), then <coordinate>_residual and
-    // <coordinate>_reserve per DOF (see TensionFrame).
+    // <coordinate>_reserve per DOF (see TensionFrame; named as getSpeedNames names the speeds).
     StorageTable report;
     int flaggedFrames = 0;  // frames whose status is not optimal: the three counts below together
     int infeasibleFrames = 0, failedFrames = 0;
     int ipoptFrames = 0;  // frames solved by Ipopt (report column ipopt = 1): the fallback, or exponent != 2
     // Indices into motion.rows of the rows in the time range whose coordinates were not all finite.
     std::vector<int> missingRows;
+    // Per solved frame (report rows with status 0-2), the wall-clock seconds of its inverse dynamics, wire
+    // Jacobian and distribution: the paper's Table 2 figure. Kept out of the tables, which stay reproducible.
+    std::vector<double> frameSeconds;
 };
+
+// The run in figures for a person (what `sinew tensions` prints, the paper's Table 2): over the solved
+// frames, seconds per frame and Z (report column Z), and with contact the root's residual force on the frames
+// a foot is down, as a share of the body's weight.
+struct TensionMotionSummary {
+    int frames = 0, solvedFrames = 0;
+    double medianSeconds = 0, meanSeconds = 0;  // s per solved frame
+    double medianZ = 0, meanZ = 0, maxZ = 0;    // N² m²
+    int contactFrames = 0;                      // frames with at least one contact in touch (contact table)
+    double bodyWeight = 0;                      // N, |gravity| times the links' total mass
+    double medianRootResidual = 0, maxRootResidual = 0;  // N over the contact frames
+};
+TensionMotionSummary summarizeTensionMotion(const Model& model, const TensionMotionResult& result);
 
 // The table's columns must be exactly the model's coordinates, quaternions included (readCoordinateSamples
 // says what is missing or extra). Throws sinew::Error when the finite rows left
