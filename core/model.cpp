@@ -53,6 +53,11 @@ const char* toString(WrapMethod method) {
     return "?";
 }
 
+std::optional<double> getWireStrength(const Wire& wire) {
+    if (wire.strength) return wire.strength;
+    return wire.law->getMaxIsometricForce();
+}
+
 int getNumQ(JointType type) {
     switch (type) {
         case JointType::Free: return 7;

@@ -197,6 +197,14 @@ WrapObject buildWrapObject(const WrapObjectSpec& os, int link) {
     return object;
 }
 
+// A wire's optional strength or cross-section: finite and > 0 when given.
+void checkWireMagnitude(const std::optional<double>& value, const std::string& where, const std::string& label,
+                        const char* field, const char* unit) {
+    if (value && !(std::isfinite(*value) && *value > 0))
+        throw ModelError(where, label + ": " + field + " must be a finite number > 0 (" + unit + "), got " +
+                                    std::to_string(*value));
+}
+
 // One wrap of wire `label` (numPoints points) over `object` (index objectIndex): the range, and MuJoCo's
 // restrictions: a sphere or cylinder, the one segment between two adjacent points, a side site only for it,
 // on link sideSiteLink (resolved from wr.sideSiteLink).
@@ -689,6 +697,10 @@ void ModelBuilder::Compilation::buildWire(const WireSpec& ws) {
     wire.numPoints = static_cast<int>(ws.points.size());
     for (std::size_t k = 0; k < ws.points.size(); ++k) addWirePoint(ws, k, label, wire);
     for (const WireWrapSpec& wr : ws.wraps) addWireWrap(wr, wr.where.empty() ? ws.where : wr.where, label, wire);
+    checkWireMagnitude(ws.strength, ws.where, label, "strength", "N");
+    checkWireMagnitude(ws.crossSection, ws.where, label, "cross-section", "m^2");
+    wire.strength = ws.strength;
+    wire.crossSection = ws.crossSection;
     wire.lawSpec = ws.law;
     try {
         wire.law = ForceLawRegistry::global().create(ws.law.type, ws.law.parameters);

@@ -18,8 +18,8 @@ public:
 
     WholeBodyRules read(const YAML::Node& root) const {
         if (!root.IsMap()) fail(root, "a rules file is a mapping with keys whole_body_rules, name, root, links, ...");
-        requireKeys(root, "rules", {"whole_body_rules", "name", "root", "stiffness", "missing_mass", "links", "loops",
-                                    "forks", "unwrapped", "ligaments", "cartilage", "joint_ligaments", "discs"});
+        requireKeys(root, "rules", {"whole_body_rules", "name", "root", "stiffness", "strength", "missing_mass", "links",
+                                    "loops", "forks", "unwrapped", "ligaments", "cartilage", "joint_ligaments", "discs"});
         if (readInt(field(root, "whole_body_rules", "rules"), "whole_body_rules") != kRulesFormatVersion)
             fail(root["whole_body_rules"], "unsupported rules version (this sinew reads version 1)");
         WholeBodyRules rules;
@@ -27,6 +27,7 @@ public:
         if (root["name"]) rules.name = readString(root["name"], "name");
         rules.root = readString(field(root, "root", "rules"), "root");
         if (root["stiffness"]) rules.stiffness = readStiffness(root["stiffness"]);
+        if (root["strength"]) rules.strength = readStrength(root["strength"]);
         if (root["missing_mass"]) rules.missingMass = readMassRule(root["missing_mass"]);
         for (const YAML::Node& node : sequence(root, "links")) rules.links.push_back(readLink(node));
         for (const YAML::Node& node : sequence(root, "loops")) rules.loops.push_back(readLoop(node));
@@ -63,6 +64,18 @@ private:
             {"cartilage_precompression", &s.cartilagePrecompression}, {"limit_fraction", &s.limitFraction},
             {"damping_ratio", &s.dampingRatio}, {"prestretch", &s.prestretch}};
         readOptionalNumbers(node, entries, "stiffness", false);
+        return s;
+    }
+
+    WholeBodyStrength readStrength(const YAML::Node& node) const {
+        requireKeys(node, "strength", {"specific_tension", "tendon_stress", "ligament_cross_section", "ligament_stress",
+                                       "cartilage_cross_section", "cartilage_stress"});
+        WholeBodyStrength s;
+        const std::pair<const char*, double*> entries[] = {
+            {"specific_tension", &s.specificTension}, {"tendon_stress", &s.tendonStress},
+            {"ligament_cross_section", &s.ligamentCrossSection}, {"ligament_stress", &s.ligamentStress},
+            {"cartilage_cross_section", &s.cartilageCrossSection}, {"cartilage_stress", &s.cartilageStress}};
+        readOptionalNumbers(node, entries, "strength", true);
         return s;
     }
 

@@ -322,7 +322,7 @@ private:
     }
 
     WireSpec readWire(const YAML::Node& node) const {
-        requireKeys(node, "wire", {"name", "kind", "points", "wraps", "force_law"});
+        requireKeys(node, "wire", {"name", "kind", "points", "wraps", "force_law", "strength", "cross_section"});
         WireSpec wire;
         wire.where = where(node);
         wire.name = readString(field(node, "name", "wire"), "name");
@@ -347,6 +347,9 @@ private:
         }
         if (wire.law.type.empty()) fail(law, owner + ": force_law needs a 'type'");
         wire.lawWhere = where(law);
+        // Their signs are checked where every wire's are, in ModelBuilder, at the wire's line.
+        if (node["strength"]) wire.strength = readNumber(node["strength"], "strength");
+        if (node["cross_section"]) wire.crossSection = readNumber(node["cross_section"], "cross_section");
         return wire;
     }
 };

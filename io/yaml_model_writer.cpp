@@ -265,7 +265,10 @@ void emitWire(YAML::Emitter& out, const Model& model, const Wire& wire) {
             out << YAML::EndSeq;
         }
     }
-    out << YAML::EndMap << YAML::EndMap;
+    out << YAML::EndMap;
+    if (wire.strength) out << YAML::Key << "strength" << YAML::Value << *wire.strength;
+    if (wire.crossSection) out << YAML::Key << "cross_section" << YAML::Value << *wire.crossSection;
+    out << YAML::EndMap;
 }
 
 // Written only when the model names feet, so models without them keep their files byte for byte.

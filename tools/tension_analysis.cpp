@@ -6,7 +6,7 @@
 namespace sinew {
 namespace {
 
-// options.maxTension, or each wire's max isometric force.
+// options.maxTension, or each wire's strength (its own, else its law's max isometric force).
 Eigen::VectorXd getWireStrengths(const Model& model, const TensionAnalysisOptions& options) {
     const int numWires = model.getNumWires();
     if (options.maxTension.size() > 0) {
@@ -18,11 +18,12 @@ Eigen::VectorXd getWireStrengths(const Model& model, const TensionAnalysisOption
     Eigen::VectorXd strength(numWires);
     for (int w = 0; w < numWires; ++w) {
         const Wire& wire = model.getWire(w);
-        const std::optional<double> maxIsometricForce = wire.law->getMaxIsometricForce();
-        if (!maxIsometricForce)
-            throw Error("tensions: wire '" + wire.name + "' has force law '" + wire.lawSpec.type +
-                        "', which has no max isometric force: give every wire's maximum tension");
-        strength[w] = *maxIsometricForce;
+        const std::optional<double> wireStrength = getWireStrength(wire);
+        if (!wireStrength)
+            throw Error("tensions: wire '" + wire.name + "' has no strength and force law '" + wire.lawSpec.type +
+                        "', which has no max isometric force: give the wire a strength, or every wire's maximum "
+                        "tension");
+        strength[w] = *wireStrength;
     }
     return strength;
 }

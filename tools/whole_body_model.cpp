@@ -365,12 +365,25 @@ private:
         wire.law.parameters.set("rest_length", {restLength});
     }
 
-    // The source's strength of a muscle (its force law's max isometric force), for a stiffness in
-    // proportion; 1000 N where the law has none.
-    double getMaxForce(const Wire& wire) const {
-        const ForceLawParameters& parameters = wire.lawSpec.parameters;
-        return parameters.has("max_isometric_force") ? parameters.getScalar("max_isometric_force") : 1000.0;
+    // Strength and cross-section (docs/whole-body-model.md, "Strength and cross-section"): a muscle's or a
+    // tendon's strength is given, its cross-section follows from the stress its kind bears at that strength.
+    void setStrength(WireSpec& wire, double strength) const {
+        const WholeBodyStrength& s = rules_.strength;
+        wire.strength = strength;
+        wire.crossSection = strength / (wire.kind == WireKind::Muscle ? s.specificTension : s.tendonStress);
     }
+
+    // A ligament's or cartilage's cross-section is its kind's, its strength that area at the ultimate stress.
+    void setPassiveStrength(WireSpec& wire) const {
+        const WholeBodyStrength& s = rules_.strength;
+        const bool cartilage = wire.kind == WireKind::Cartilage;
+        wire.crossSection = cartilage ? s.cartilageCrossSection : s.ligamentCrossSection;
+        wire.strength = *wire.crossSection * (cartilage ? s.cartilageStress : s.ligamentStress);
+    }
+
+    // The source's strength of a muscle (its own, else its force law's max isometric force), for its strength
+    // and a stiffness in proportion; 1000 N where it has neither.
+    double getMaxForce(const Wire& wire) const { return getWireStrength(wire).value_or(1000.0); }
 
     double calcMuscleStiffness(const Wire& wire, double neutralLength) const {
         return rules_.stiffness.muscleStrainStiffness * getMaxForce(wire) / neutralLength;
@@ -385,9 +398,12 @@ private:
     void addFork(ModelBuilder& builder, const WholeBodyForkRule& rule, std::set<std::string>& forked) {
         if (rule.heads.size() < 2) fail(rule.where, "fork '" + rule.name + "' needs two heads or more");
         std::vector<std::vector<NeutralPoint>> paths;
+        double tendonStrength = 0;  // the heads all pull on the node, and the tendon carries them on
         for (const std::string& head : rule.heads) {
             if (!forked.insert(head).second) fail(rule.where, "wire '" + head + "' is already forked");
-            paths.push_back(getNeutralPath(findSourceWire(head, rule.where)));
+            const int w = findSourceWire(head, rule.where);
+            paths.push_back(getNeutralPath(w));
+            tendonStrength += getMaxForce(source_.getWire(w));
         }
         const std::vector<NeutralPoint>& first = paths.front();
         const Eigen::Vector3d& a = first[first.size() - 2].p_G;
@@ -402,6 +418,7 @@ private:
             WireSpec head = makeWire(rule.heads[h], source_.getWire(w).kind, headPath, rule.where);
             const double headLength = calcPolylineLength(headPath);
             setSpringDamper(head, calcMuscleStiffness(source_.getWire(w), headLength), (1 - prestretch) * headLength);
+            setStrength(head, getMaxForce(source_.getWire(w)));
             builder.addWire(head);
             const double unitLength = headLength + (paths.front().back().p_G - node).norm();
             notes_.push_back("fork '" + rule.name + "': '" + rule.heads[h] + "' and the tendon are " +
@@ -412,6 +429,7 @@ private:
             const std::vector<NeutralPoint> tail = {{rule.name, node}, paths.front().back()};
             WireSpec tendon = makeWire(rule.tendon, WireKind::Tendon, tail, rule.where);
             setSpringDamper(tendon, rules_.stiffness.tendonStiffness, (1 - prestretch) * calcPolylineLength(tail));
+            setStrength(tendon, tendonStrength);
             builder.addWire(tendon);
         }
     }
@@ -432,6 +450,8 @@ private:
             const double stiffness = wire.kind == WireKind::Muscle ? calcMuscleStiffness(wire, length)
                                                                    : rules_.stiffness.tendonStiffness;
             setSpringDamper(spec, stiffness, (1 - rules_.stiffness.prestretch) * length);
+            if (wire.kind == WireKind::Muscle || wire.kind == WireKind::Tendon) setStrength(spec, getMaxForce(wire));
+            else setPassiveStrength(spec);
             builder.addWire(spec);
         }
     }
@@ -483,6 +503,7 @@ private:
                                 " at neutral, " + formatLength(atLimit) + " at the limit)");
             setSpringDamper(wire, s.ligamentStiffness, neutral + s.limitFraction * (atLimit - neutral));
         }
+        setPassiveStrength(wire);
         builder.addWire(wire);
     }
 

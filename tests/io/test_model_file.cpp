@@ -317,6 +317,22 @@ TEST(ModelFileErrors, InitialAngleOnBallJoint) {
                             {"joint 'shoulder'", "initial_angle", "pin"}));
 }
 
+// A wire's strength and cross-section must be finite and > 0: a number is checked where it is written, its sign
+// where the wire is built, at the wire's line.
+TEST(ModelFileErrors, BadWireStrengthOrCrossSection) {
+    for (const std::string field : {"strength", "cross_section"}) {
+        SCOPED_TRACE(field);
+        const std::string named = field == "strength" ? "strength" : "cross-section";
+        for (const std::string value : {"0", "-2"})
+            EXPECT_TRUE(rejectsAt(modelWith({{kForceLaw, followedBy(kForceLaw, "    " + field + ": " + value)}}),
+                                  kWireName, {"wire 'biceps'", named, "> 0"}));
+        EXPECT_TRUE(rejectsAt(modelWith({{kForceLaw, followedBy(kForceLaw, "    " + field + ": .nan")}}), kForceLaw + 1,
+                              {"'" + field + "'", "finite"}));
+        EXPECT_TRUE(rejectsAt(modelWith({{kForceLaw, followedBy(kForceLaw, "    " + field + ": strong")}}),
+                              kForceLaw + 1, {"'" + field + "'", "number"}));
+    }
+}
+
 // ---------------------------------------------------------------------------------------------------------
 // Round trip: write, read back, compare field by field; writing the reloaded model gives the same text.
 
@@ -388,6 +404,8 @@ void expectSameModel(const Model& a, const Model& b) {
         EXPECT_EQ(wa.lawSpec.type, wb.lawSpec.type);
         EXPECT_EQ(wa.lawSpec.parameters.getAll(), wb.lawSpec.parameters.getAll());
         EXPECT_EQ(wa.supportLinks, wb.supportLinks);
+        EXPECT_EQ(wa.strength, wb.strength);
+        EXPECT_EQ(wa.crossSection, wb.crossSection);
         ASSERT_NE(wb.law, nullptr);
     }
 }
@@ -403,6 +421,25 @@ TEST(ModelFileRoundTrip, Arm26) {
     const Model arm = readModelFile(SINEW_SOURCE_DIR "/models/arm26.yaml");
     ASSERT_EQ(arm.getNumWires(), 6);
     expectRoundTrip(arm);
+}
+
+TEST(ModelFileRoundTrip, WireStrengthAndCrossSection) {
+    // Numbers no short decimal writes exactly, so a writer that rounded them would show.
+    const Model model = readModelText(
+        modelWith({{kForceLaw, followedBy(kForceLaw, "    strength: 1234.5678901234567\n    cross_section: 3.1e-05")}}),
+        "strength.yaml");
+    const Wire& wire = model.getWire(0);
+    ASSERT_TRUE(wire.strength && wire.crossSection);
+    EXPECT_EQ(*wire.strength, 1234.5678901234567);
+    EXPECT_EQ(*wire.crossSection, 3.1e-05);
+    // A spring-damper has no max isometric force: the wire's strength is the one it is given.
+    EXPECT_FALSE(wire.law->getMaxIsometricForce());
+    EXPECT_EQ(getWireStrength(wire), wire.strength);
+    expectRoundTrip(model);
+    // Without them, the wire has neither and its file neither.
+    const Model plain = readModelText(modelWith(), "plain.yaml");
+    EXPECT_FALSE(plain.getWire(0).strength || plain.getWire(0).crossSection || getWireStrength(plain.getWire(0)));
+    EXPECT_EQ(writeModelText(plain).find("strength"), std::string::npos);
 }
 
 TEST(ModelFileRoundTrip, InitialPoses) {

@@ -2,13 +2,15 @@
 // produce, through sinew's one-pass generalized forces of tensions (calcWireGeneralizedForces, which never
 // forms J), the inverse dynamics torques less the reported residual; and Z must be that residual's size.
 // On frames made feasible by construction (accelerations that known tensions f0 produce) each method's own
-// promise is checked against f0. runTensionAnalysis keeps a row for every motion row, NaN rows included.
+// promise is checked against f0. runTensionAnalysis keeps a row for every motion row, NaN rows included. Wire
+// strengths written in the model file bound the tensions as the same maximum tensions given as options do.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <sstream>
 
 #include "sinew/core/error.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
@@ -16,6 +18,7 @@
 #include "support/random_model.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
+#include "sinew/io/model_file.hpp"
 #include "sinew/io/model_loading.hpp"
 #include "sinew/tensions/tension_method_registry.hpp"
 #include "sinew/tools/tension_analysis.hpp"
@@ -255,6 +258,52 @@ TEST(TensionMotion, NaNRowsAreFlaggedAndTheRestMatchesTheMotionWithoutThem) {
     options.startTime = 0.3;
     options.finalTime = 0.8;
     EXPECT_EQ(runTensionAnalysis(model, motion, nullptr, options).missingRows, std::vector<int>{50});
+}
+
+// arm26's spring-damper wires, each given a strength in its file: with no maximum tensions given, the LP and
+// the QP bound each wire by its strength, as they do when those strengths are given as maximum tensions.
+TEST(TensionAnalysis, WireStrengthsFromTheModelFileBoundTheTensions) {
+    const test::NamedModel arm = test::loadArm26();
+    const int wires = arm.model.getNumWires();
+    Eigen::VectorXd strength(wires);
+    std::string withStrengths;
+    std::istringstream lines(writeModelText(arm.model));
+    int w = 0;
+    for (std::string line; std::getline(lines, line);) {
+        withStrengths += line + "\n";
+        const std::size_t key = line.find("force_law:");
+        if (key == std::string::npos) continue;
+        strength[w] = 150 + 60 * w;  // weak enough that some bounds hold in the frames below
+        withStrengths += line.substr(0, key) + "strength: " + std::to_string(150 + 60 * w) + "\n";
+        ++w;
+    }
+    ASSERT_EQ(w, wires);
+    const Model model = readModelText(withStrengths, "arm26_strength.yaml");
+    const std::vector<SpatialVector> noLoads(static_cast<std::size_t>(model.getNumLinks()), SpatialVector::Zero());
+    for (const std::string method : {"lp", "qp"}) {
+        SCOPED_TRACE(method);
+        TensionAnalysisOptions options;
+        options.method = method;
+        options.useMusclePhysiology = false;
+        TensionAnalysis fromModel(model, options);
+        options.maxTension = strength;
+        TensionAnalysis fromOptions(arm.model, options);
+        std::mt19937 rng(11);
+        std::uniform_real_distribution<double> angle(0.2, 1.2), rate(-3, 3);
+        int bounded = 0;
+        for (int frame = 0; frame < 20; ++frame) {
+            Eigen::VectorXd q(model.getNumQ()), u(model.getNumU()), udot(model.getNumU());
+            for (Eigen::Index i = 0; i < q.size(); ++i) q[i] = angle(rng);
+            for (Eigen::Index i = 0; i < u.size(); ++i) u[i] = rate(rng), udot[i] = rate(rng);
+            const Eigen::VectorXd tension = fromModel.calcFrame(q, u, udot, noLoads).tension;
+            const Eigen::VectorXd reference = fromOptions.calcFrame(q, u, udot, noLoads).tension;
+            EXPECT_LT((tension - reference).norm(), 1e-9 * (1 + reference.norm())) << "frame " << frame;
+            EXPECT_TRUE((tension.array() >= -1e-9).all() && (tension.array() <= strength.array() + 1e-6).all())
+                << tension.transpose();
+            bounded += ((strength - tension).array() < 1e-6).any() ? 1 : 0;
+        }
+        EXPECT_GT(bounded, 0) << "no frame reached a strength, so the test could not tell the bounds apart";
+    }
 }
 
 TEST(TensionAnalysis, RefusesWiresWithoutStrength) {

@@ -1,7 +1,8 @@
 // The shipped whole-body model (models/whole_body/whole_body.yaml) against what the paper's model has, against
 // the source it was derived from (MS-Human-700 imported from MJCF, where ../shared is present), and in forward
 // dynamics: ligaments slack at neutral and taut at their limits through the model's own joints, virtual links
-// in equilibrium in the hang by the head. (Both engines' udot on it: tests/plugin/test_virtual_links.cpp.)
+// in equilibrium in the hang by the head (both engines' udot on it: tests/plugin/test_virtual_links.cpp); every
+// wire's strength and cross-section, against the source's forces.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -10,12 +11,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <vector>
 #include <string>
 
 #include "sinew/core/census.hpp"
 #include "sinew/core/data.hpp"
+#include "sinew/core/error.hpp"
 #include "sinew/core/forward_simulation.hpp"
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/wire_path.hpp"
@@ -103,6 +106,80 @@ TEST(WholeBodyModel, KeptWiresHaveTheSourceLengthsAtNeutral) {
     }
     EXPECT_GE(compared, 600);
     std::printf("%d source wires kept whole: neutral lengths within %.3g m of the source's\n", compared, worst);
+}
+
+// Every wire can enter a tension distribution and report a stress: a finite, positive strength and cross-section.
+// The muscles' strengths are the max isometric forces of the source as sinew's MJCF importer reads it, a fork's
+// tendon carries its heads' sum, and each cross-section is its strength at the stress the rules give its kind.
+TEST(WholeBodyModel, EveryWireHasAStrengthAndCrossSection) {
+    const Model& model = getShippedModel();
+    const WholeBodyRules rules = readWholeBodyRules((kModelDir / "rules.yaml").string());
+    const WholeBodyStrength& s = rules.strength;
+    for (const Wire& wire : model.getWires()) {
+        SCOPED_TRACE(wire.name);
+        ASSERT_TRUE(wire.strength && wire.crossSection);
+        EXPECT_TRUE(std::isfinite(*wire.strength) && *wire.strength > 0);
+        EXPECT_TRUE(std::isfinite(*wire.crossSection) && *wire.crossSection > 0);
+        EXPECT_EQ(getWireStrength(wire), wire.strength);  // spring-dampers all: the strength is the wire's own
+        const double stress = *wire.strength / *wire.crossSection;
+        switch (wire.kind) {
+            case WireKind::Muscle: EXPECT_NEAR(stress, s.specificTension, 1e-9 * s.specificTension); break;
+            case WireKind::Tendon: EXPECT_NEAR(stress, s.tendonStress, 1e-9 * s.tendonStress); break;
+            case WireKind::Ligament:
+                EXPECT_EQ(*wire.crossSection, s.ligamentCrossSection);
+                EXPECT_NEAR(stress, s.ligamentStress, 1e-9 * s.ligamentStress);
+                break;
+            case WireKind::Cartilage:
+                EXPECT_EQ(*wire.crossSection, s.cartilageCrossSection);
+                EXPECT_NEAR(stress, s.cartilageStress, 1e-9 * s.cartilageStress);
+                break;
+        }
+    }
+    if (!std::filesystem::exists(kSource)) GTEST_SKIP() << kSource << " is absent (it ships only with sinew's developer data)";
+    const Model source = loadModel(kSource.string(), [](const std::string&) {});
+    auto sourceForce = [&](const std::string& name) {
+        const int w = source.findWireIndex(name);
+        if (w == Model::kNotFound) {
+            ADD_FAILURE() << "no wire '" << name << "' in the source";
+            return 0.0;
+        }
+        const std::optional<double> force = source.getWire(w).law->getMaxIsometricForce();
+        EXPECT_TRUE(force) << name;
+        return force.value_or(0.0);
+    };
+    int muscles = 0;
+    for (const Wire& wire : model.getWires()) {
+        if (wire.kind != WireKind::Muscle) continue;
+        EXPECT_EQ(*wire.strength, sourceForce(wire.name)) << wire.name;
+        ++muscles;
+    }
+    EXPECT_EQ(muscles, source.getNumWires());
+    for (const WholeBodyForkRule& fork : rules.forks) {
+        double heads = 0;
+        for (const std::string& head : fork.heads) heads += sourceForce(head);
+        const int tendon = model.findWireIndex(fork.tendon);
+        ASSERT_NE(tendon, Model::kNotFound) << fork.tendon;
+        EXPECT_NEAR(*model.getWire(tendon).strength, heads, 1e-12 * heads) << fork.tendon;
+    }
+}
+
+// The rules' strength numbers must be > 0, each rejected at its file's line, naming the field.
+TEST(WholeBodyModel, RulesRejectAStrengthNumberThatIsNotPositive) {
+    const std::filesystem::path path = std::filesystem::temp_directory_path() / "sinew_strength_rules.yaml";
+    for (const std::string field :
+         {"specific_tension", "tendon_stress", "ligament_cross_section", "cartilage_stress"}) {
+        SCOPED_TRACE(field);
+        std::ofstream(path) << "whole_body_rules: 1\nroot: pelvis\nstrength:\n  " << field << ": 0\n";
+        try {
+            readWholeBodyRules(path.string());
+            ADD_FAILURE() << "a zero " << field << " was accepted";
+        } catch (const ModelError& e) {
+            const std::string message = e.what();
+            EXPECT_EQ(message.rfind(path.string() + ":4: ", 0), 0u) << message;
+            EXPECT_NE(message.find("'" + field + "' must be > 0"), std::string::npos) << message;
+        }
+    }
+    std::filesystem::remove(path);
 }
 
 // The ball joint's quaternion for `link` turned by angle about axis (ground axes; the model's link frames are

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -182,6 +183,11 @@ struct Wire {
     int numPoints = 0;   // >= 2: origin, via-points..., insertion
     ForceLawSpec lawSpec;
     std::shared_ptr<const ForceLaw> law;
+    // N: the most tension a tension distribution may give the wire, for wires whose law has no max isometric
+    // force (passive ligaments, cartilage); getWireStrength() is the one place that chooses between the two.
+    std::optional<double> strength;
+    // m^2: the physiological (muscle) or anatomical (ligament, tendon) cross-section, for stress = tension / area.
+    std::optional<double> crossSection;
     // OpenSim's path features; a wire with none of them is a plain polyline, evaluated on a faster path.
     std::vector<WirePointCondition> conditions;
     std::vector<WirePointMotion> motions;  // ordered by point
@@ -192,6 +198,9 @@ struct Wire {
 
     bool isPolyline() const { return conditions.empty() && motions.empty() && wraps.empty(); }
 };
+
+// The wire's `strength` when given, else its force law's max isometric force; none when neither is.
+std::optional<double> getWireStrength(const Wire& wire);
 
 // A link that may touch the ground (a foot): when the tension analysis finds it in contact (contact_detection.hpp),
 // the ground pushes on its sole with forces inside a friction cone (docs/tensions-from-motion.md, "Contact").

@@ -139,6 +139,8 @@ struct WireSpec {
     std::vector<WirePointSpec> points;
     std::vector<WireWrapSpec> wraps;
     ForceLawSpec law;
+    std::optional<double> strength;      // N, > 0 when given (Wire::strength)
+    std::optional<double> crossSection;  // m^2, > 0 when given (Wire::crossSection)
     std::string where;
     std::string lawWhere;  // where the force law is written, for its errors; `where` when empty
 };

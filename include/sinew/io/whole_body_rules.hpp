@@ -91,6 +91,20 @@ struct WholeBodyStiffness {
     double dampingRatio = 0.01;         // damping = dampingRatio * stiffness (s)
 };
 
+// Each wire's strength (N, the most tension a tension distribution may give it) and cross-section (m^2, for
+// stress = tension / area); docs/whole-body-model.md, "Strength and cross-section", cites the numbers.
+struct WholeBodyStrength {
+    // Muscles: strength = the source's max isometric force, cross-section (PCSA) = strength / specificTension.
+    double specificTension = 0.35e6;  // Pa
+    // Tendons beyond a fork: strength = the heads' strengths summed, cross-section = strength / tendonStress.
+    double tendonStress = 25e6;  // Pa
+    // Ligaments and cartilage: a cross-section per kind, strength = cross-section x ultimate stress.
+    double ligamentCrossSection = 30e-6;     // m^2
+    double ligamentStress = 35e6;            // Pa
+    double cartilageCrossSection = 200e-6;   // m^2
+    double cartilageStress = 2e6;            // Pa
+};
+
 // Masses the source lacks (MS-Human-700's ribs took theirs from meshes), completed from a segment's mass
 // ratio (Dumas 2007): the missing bodies share equally what the segment lacks once the known bodies in it
 // are counted; whole-body mass M = (known mass - known segment mass) / (1 - ratio).
@@ -117,6 +131,7 @@ struct WholeBodyRules {
     std::vector<WholeBodyJointWiresRule> jointWires;
     std::optional<WholeBodyMassRule> missingMass;
     WholeBodyStiffness stiffness;
+    WholeBodyStrength strength;
 };
 
 // Reads a rules file; ModelError at "file:line" naming the field.
