@@ -22,10 +22,11 @@ const char* kUsage =
     "  reaches (a floating root) keep their generalized force as residual. Writes TENSIONS.sto, TENSIONS_report.sto (per frame: status 0 optimal,\n"
     "  1 infeasible, 2 failed; Z; active wires; ipopt 1 where the Ipopt fallback solved the frame;\n"
     "  residuals and phase-1 reserves per DOF: the least extra generalized force an infeasible frame\n"
-    "  needs) and, for so,\n"
-    "  TENSIONS_activations.sto. Infeasible and failed frames are kept and counted. Motion rows with NaN or\n"
-    "  empty cells are left out of the splines and written with status 3 and zero tensions, their times\n"
-    "  listed. MODEL: .osim or .yaml.\n"
+    "  needs), TENSIONS_joint_loads.sto (per joint the load on its child link at the joint centre, child axes:\n"
+    "  _mx _my _mz N m, _fx _fy _fz N; per loop _fx _fy _fz N on its link B), TENSIONS_ligament_stress.sto (Pa,\n"
+    "  ligaments with a cross_section) and, for so, TENSIONS_activations.sto. Infeasible and failed frames are\n"
+    "  kept and counted. Motion rows with NaN or empty cells are left out of the splines and written with\n"
+    "  status 3 and zero tensions, their times listed. MODEL: .osim or .yaml.\n"
     "  --external-loads X.xml   OpenSim ExternalLoads (e.g. ground reactions)\n"
     "  --no-contact             without external loads, do not give the model's feet (its contacts: section)\n"
     "                           contact forces on the frames they touch the ground (TENSIONS_contact.sto)\n"
@@ -43,9 +44,9 @@ std::string withSuffix(const std::string& path, const std::string& suffix) {
 
 void printSummary(const std::string& method, const TensionMotionSummary& summary) {
     std::printf("summary (%s): %d frames solved; per frame %.4g s median, %.4g s mean (inverse dynamics, J and "
-                "the distribution); Z median %.4g, mean %.4g, max %.4g N^2 m^2\n",
-                method.c_str(), summary.solvedFrames, summary.medianSeconds, summary.meanSeconds, summary.medianZ,
-                summary.meanZ, summary.maxZ);
+                "the distribution), joint loads %.3g s median more; Z median %.4g, mean %.4g, max %.4g N^2 m^2\n",
+                method.c_str(), summary.solvedFrames, summary.medianSeconds, summary.meanSeconds,
+                summary.medianJointLoadSeconds, summary.medianZ, summary.meanZ, summary.maxZ);
     if (summary.contactFrames > 0)
         std::printf("contact (%s): %d frames with a foot down; root residual force median %.3g N, max %.3g N "
                     "(%.2f %% of the body weight, %.1f N)\n",
@@ -98,14 +99,16 @@ int runTensions(const std::vector<std::string>& args) {
     OutputFileSet outputs;
     writeStorageFile(result.tensions, outputs, output);
     writeStorageFile(result.report, outputs, withSuffix(output, "_report"));
-    if (!result.activations.columns.empty())
-        writeStorageFile(result.activations, outputs, withSuffix(output, "_activations"));
-    else
-        outputs.retire(withSuffix(output, "_activations"));
-    if (!result.contact.columns.empty())
-        writeStorageFile(result.contact, outputs, withSuffix(output, "_contact"));
-    else
-        outputs.retire(withSuffix(output, "_contact"));
+    const auto writeUnlessEmpty = [&](const StorageTable& table, const std::string& suffix) {
+        if (!table.columns.empty())
+            writeStorageFile(table, outputs, withSuffix(output, suffix));
+        else
+            outputs.retire(withSuffix(output, suffix));
+    };
+    writeUnlessEmpty(result.activations, "_activations");
+    writeUnlessEmpty(result.contact, "_contact");
+    writeUnlessEmpty(result.jointLoads, "_joint_loads");
+    writeUnlessEmpty(result.ligamentStress, "_ligament_stress");
     outputs.commit();
     std::printf("%zu frames, %zu wires (%s) -> %s\n", result.tensions.times.size(), result.tensions.columns.size(),
                 method.c_str(), output.c_str());

@@ -11,6 +11,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/signal/smoothing_spline.hpp"
 #include "sinew/tools/coordinate_table.hpp"
+#include "sinew/tools/joint_load_table.hpp"
 #include "sinew/tools/measured_loads.hpp"
 #include "sinew/tools/motion_contacts.hpp"
 #include "sinew/tools/motion_frames.hpp"
@@ -78,6 +79,14 @@ public:
         for (const std::string& dof : dofNames) reportColumns_.push_back(dof + "_reserve");
         result.tensions = makeTable("Wire tensions (" + options.analysis.method + ")", wireNames);
         result.report = makeTable("Tension report", reportColumns_);
+        std::vector<std::string> ligamentNames;
+        for (int w = 0; w < model.getNumWires(); ++w) {
+            const Wire& wire = model.getWire(w);
+            if (wire.kind != WireKind::Ligament || !wire.crossSection) continue;
+            ligaments_.push_back(w);
+            ligamentNames.push_back(wire.name);
+        }
+        if (!ligaments_.empty()) result.ligamentStress = makeTable("Ligament stress (Pa)", ligamentNames);
         if (!staticOptimization) return;
         result.activations = makeTable("Static Optimization", wireNames);
         std::vector<std::string> reserveNames;
@@ -95,6 +104,8 @@ public:
         Eigen::VectorXd row = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(reportColumns_.size()));
         row[0] = kMissingInputStatus;
         append(result_.report, t, row);
+        if (!ligaments_.empty())
+            append(result_.ligamentStress, t, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(ligaments_.size())));
     }
 
     void appendFrame(double t, const TensionFrame& frame) {
@@ -113,6 +124,11 @@ public:
         row.insert(row.end(), frame.reserve.data(), frame.reserve.data() + frame.reserve.size());
         result_.report.times.push_back(t);
         result_.report.rows.push_back(std::move(row));
+        if (ligaments_.empty()) return;
+        std::vector<double> stress;
+        for (const int w : ligaments_) stress.push_back(frame.tension[w] / *model_.getWire(w).crossSection);
+        result_.ligamentStress.times.push_back(t);
+        result_.ligamentStress.rows.push_back(std::move(stress));
     }
 
 private:
@@ -121,6 +137,7 @@ private:
     bool staticOptimization_;
     TensionMotionResult& result_;
     std::vector<std::string> reportColumns_;
+    std::vector<int> ligaments_;  // the wires of ligamentStress's columns
 };
 
 // One frame's tensions; errors name the frame.
@@ -159,9 +176,11 @@ TensionMotionResult analyseTrajectory(const Model& model, const CoordinateTrajec
     }
     TensionAnalysis analysis(model, analysisOptions);
     TensionTables tables(model, options, analysis.solvesActivations(), result);
+    JointLoadTable jointLoads(model, contacts ? contacts->getColumns() : nullptr, result.jointLoads);
     const auto appendMissing = [&](double t) {
         tables.appendMissing(t);
         if (contacts) contacts->appendMissing(t);
+        jointLoads.appendMissing(t);
     };
     const std::vector<int>& missing = result.missingRows;
     std::size_t nextMissing = 0;
@@ -175,8 +194,11 @@ TensionMotionResult analyseTrajectory(const Model& model, const CoordinateTrajec
             if (contacts) contacts->prepareFrame(motion.index);
             const auto start = std::chrono::steady_clock::now();
             const TensionFrame& frame = solveFrame(analysis, motion);
-            result.frameSeconds.push_back(
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            const auto solved = std::chrono::steady_clock::now();
+            result.frameSeconds.push_back(std::chrono::duration<double>(solved - start).count());
+            jointLoads.appendFrame(motion, analysis, frame);
+            result.jointLoadSeconds.push_back(
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - solved).count());
             tables.appendFrame(motion.time, frame);
             if (contacts) contacts->appendFrame(motion, analysis, frame);
         },
@@ -255,6 +277,7 @@ TensionMotionSummary summarizeTensionMotion(const Model& model, const TensionMot
     summary.solvedFrames = static_cast<int>(zs.size());
     summary.medianSeconds = median(result.frameSeconds);
     summary.meanSeconds = mean(result.frameSeconds);
+    summary.medianJointLoadSeconds = median(result.jointLoadSeconds);
     summary.medianZ = median(zs);
     summary.meanZ = mean(zs);
     summary.maxZ = zs.empty() ? 0 : *std::max_element(zs.begin(), zs.end());

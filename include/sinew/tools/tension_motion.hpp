@@ -43,6 +43,14 @@ struct TensionMotionResult {
     // With contact: per frame the root's residual force (N) and moment (N m) and, per contact, in_contact,
     // force (N), centre of pressure (m) and moment (N m) in ground axes (motion_contacts.hpp); empty otherwise.
     StorageTable contact;
+    // Per frame, what each joint and loop carries (joint_load_table.hpp, docs/tensions-from-motion.md,
+    // "Somatosensory outputs"): per joint <joint>_mx _my _mz (N m), _fx _fy _fz (N), the parent's load on the
+    // child link at the joint centre in the child link's axes; per loop <loop>_fx _fy _fz (N) on its link B,
+    // in B's axes.
+    StorageTable jointLoads;
+    // Per frame, per ligament (WireKind::Ligament) with a cross-section: tension / cross-section (Pa), in wire
+    // order; empty when no ligament has one.
+    StorageTable ligamentStress;
     // Per frame: status (0 optimal, 1 infeasible, 2 failed, 3 missing input), Z (N² m²), active_wires, iterations,
     // ipopt (1: solved by Ipopt), unactuated_residual (|tau| on DOFs no wire reaches), then <coordinate>_residual and
     // <coordinate>_reserve per DOF (see TensionFrame; named as getSpeedNames names the speeds).
@@ -55,6 +63,8 @@ struct TensionMotionResult {
     // Per solved frame (report rows with status 0-2), the wall-clock seconds of its inverse dynamics, wire
     // Jacobian and distribution: the paper's Table 2 figure. Kept out of the tables, which stay reproducible.
     std::vector<double> frameSeconds;
+    // Per solved frame, the wall-clock seconds of its joint loads (after frameSeconds' span).
+    std::vector<double> jointLoadSeconds;
 };
 
 // The run in figures for a person (what `sinew tensions` prints, the paper's Table 2): over the solved
@@ -63,6 +73,7 @@ struct TensionMotionResult {
 struct TensionMotionSummary {
     int frames = 0, solvedFrames = 0;
     double medianSeconds = 0, meanSeconds = 0;  // s per solved frame
+    double medianJointLoadSeconds = 0;          // s per solved frame, the joint loads alone
     double medianZ = 0, meanZ = 0, maxZ = 0;    // N² m²
     int contactFrames = 0;                      // frames with at least one contact in touch (contact table)
     double bodyWeight = 0;                      // N, |gravity| times the links' total mass
