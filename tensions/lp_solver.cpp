@@ -64,6 +64,25 @@ void startFromSlacksAndFreeColumns(const DistributionProblem& problem, ClpSimple
     }
 }
 
+// Phase 1's x and reserve from Clp's solution; false when the reserves' sum exceeds what x = 0 (within the
+// bounds when every range holds 0) leaves: Clp's answer is then no minimum.
+bool readPhaseOne(const DistributionProblem& problem, const LpArrays& arrays, const ClpSimplex& simplex,
+                  Eigen::VectorXd& x, Eigen::VectorXd& reserve) {
+    const int rows = problem.getNumRows(), columns = problem.getNumVariables();
+    const double* solution = simplex.getColSolution();
+    x = Eigen::Map<const Eigen::VectorXd>(solution, columns);
+    reserve = Eigen::Map<const Eigen::VectorXd>(solution + columns, rows) -
+              Eigen::Map<const Eigen::VectorXd>(solution + columns + rows, rows);
+    bool zeroWithinBounds = true;
+    for (int j = 0; j < columns; ++j)
+        zeroWithinBounds &= arrays.columnLower[static_cast<std::size_t>(j)] <= 0 && arrays.columnUpper[static_cast<std::size_t>(j)] >= 0;
+    if (!zeroWithinBounds || !x.allFinite() || !reserve.allFinite()) return x.allFinite() && reserve.allFinite();
+    double atZero = 0;
+    for (int i = 0; i < rows; ++i)
+        atZero += std::max({0.0, arrays.rowLower[static_cast<std::size_t>(i)], -arrays.rowUpper[static_cast<std::size_t>(i)]});
+    return reserve.lpNorm<1>() <= atZero * (1 + 1e-6) + 1e-9;
+}
+
 // The phase-1 LP: min sum(s+ + s-) over x within its bounds and s+, s- >= 0 with
 // tau - tolerance <= A x + s+ - s- <= tau + tolerance. Returns false when Clp fails; the reserve is s+ - s-.
 bool solvePhaseOne(const DistributionProblem& problem, const LpArrays& arrays, Eigen::VectorXd& x,
@@ -94,12 +113,15 @@ bool solvePhaseOne(const DistributionProblem& problem, const LpArrays& arrays, E
     simplex.dual();
     if (simplex.status() != 0) simplex.primal();
     iterations += simplex.numberIterations();
-    if (simplex.status() != 0) return false;
-    const double* solution = simplex.primalColumnSolution();
-    x = Eigen::Map<const Eigen::VectorXd>(solution, columns);
-    reserve = Eigen::Map<const Eigen::VectorXd>(solution + columns, rows) -
-              Eigen::Map<const Eigen::VectorXd>(solution + columns + rows, rows);
-    return true;
+    if (simplex.status() == 0 && readPhaseOne(problem, arrays, simplex, x, reserve)) return true;
+    // Clp has called a phase 1 optimal whose reserves exceed those of x = 0 (1e8 N m against the kick's
+    // few hundred, with the free loop columns and unbounded contact forces): again from the slack basis,
+    // without scaling, by the primal simplex.
+    simplex.scaling(0);
+    simplex.allSlackBasis(true);
+    simplex.primal();
+    iterations += simplex.numberIterations();
+    return simplex.status() == 0 && readPhaseOne(problem, arrays, simplex, x, reserve);
 }
 
 }  // namespace

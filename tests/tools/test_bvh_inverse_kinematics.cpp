@@ -6,6 +6,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 
 #include "sinew/core/kinematics.hpp"
@@ -23,6 +25,11 @@ namespace sinew {
 namespace {
 
 const std::filesystem::path kModels = std::filesystem::path(SINEW_SOURCE_DIR) / "models" / "whole_body";
+
+std::string readText(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 
 std::string testPath(const std::string& name) {
     const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "sinew_bvh_inverse_kinematics";
@@ -162,6 +169,13 @@ TEST(BvhInverseKinematics, FitsTheKickWithinTwoCentimetres) {
                 converged, rms[rms.size() / 2], rms.back());
     EXPECT_LE(rms[rms.size() / 2], 0.02);
     EXPECT_TRUE(fit.result.motion.reports.front().converged);
+
+    // The shipped subject model (the kick's inverse dynamics and tensions run on it) is what this fit scaled.
+    const std::filesystem::path written = std::filesystem::path(::testing::TempDir()) / "whole_body_subject11.yaml";
+    writeModelFile(fit.model, written.string());
+    EXPECT_EQ(readText(written), readText(kModels / "whole_body_subject11.yaml"))
+        << "regenerate it: sinew ik models/whole_body/whole_body.yaml 11_01.bvh --end 0 --scaled-model "
+           "models/whole_body/whole_body_subject11.yaml -o /tmp/frame0.mot";
 }
 
 }  // namespace
