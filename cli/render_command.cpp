@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -28,6 +29,7 @@ const char* kUsage =
     "  --frame K         the row K (from 0) of the motion, or of the tensions without a motion (default 0)\n"
     "  --time T          the row nearest time T, s\n"
     "  --strip N         N frames evenly from the first row to the last, side by side (a row per view)\n"
+    "  --start T, --end T   the strip's and the page's time range, s (default: every row)\n"
     "  --view V          front, side or both (default both)\n"
     "  --height PX       height of one view, px (default 640)\n"
     "  --max-tension F   tension at the top of the colour scale, N (default: the largest drawn)\n"
@@ -48,6 +50,7 @@ int runRender(const std::vector<std::string>& args) {
     std::string modelPath, motionPath, tensionsPath, outputPath, view = "both";
     std::optional<int> frame, strip;
     std::optional<double> time;
+    double startTime = -std::numeric_limits<double>::infinity(), finalTime = std::numeric_limits<double>::infinity();
     PictureOptions options;
     ArgumentReader reader(args, kUsage);
     while (reader.next()) {
@@ -56,6 +59,8 @@ int runRender(const std::vector<std::string>& args) {
         else if (reader.is("--frame")) frame = toWholeNumber("--frame", reader.number());
         else if (reader.is("--time")) time = reader.number();
         else if (reader.is("--strip")) strip = toWholeNumber("--strip", reader.number());
+        else if (reader.is("--start")) startTime = reader.number();
+        else if (reader.is("--end")) finalTime = reader.number();
         else if (reader.is("--view")) view = reader.value();
         else if (reader.is("--height")) options.panelHeight = toWholeNumber("--height", reader.number());
         else if (reader.is("--max-tension")) options.maxTension = reader.number();
@@ -84,11 +89,22 @@ int runRender(const std::vector<std::string>& args) {
     // Rows index the motion, else the tensions table; the default pose alone has one frame.
     const Eigen::VectorXd times = motion ? motion->times : tensions ? tensions->times : Eigen::VectorXd::Zero(1);
     const std::string rowsFile = motion ? motionPath : tensions ? tensionsPath : "the default pose";
+    // The strip and the page draw the rows in [--start, --end] (a tensions table of part of a motion).
+    std::vector<int> inRange;
+    for (Eigen::Index i = 0; i < times.size(); ++i)
+        if (times[i] >= startTime && times[i] <= finalTime) inRange.push_back(static_cast<int>(i));
+    if (inRange.empty())
+        throw Error(rowsFile + ": no row in the time range [" + std::to_string(startTime) + ", " +
+                    std::to_string(finalTime) + "] s");
+    const Eigen::VectorXd rangeTimes = times(inRange);
     std::vector<int> rows = {0};
     if (frame) rows = {findFrame(times, *frame, rowsFile)};
     if (time) rows = {findFrameAtTime(times, *time, rowsFile)};
-    if (strip) rows = selectStripFrames(times, *strip, rowsFile);
-    if (html) rows = selectStripFrames(times, static_cast<int>(times.size()), rowsFile);
+    if (strip || html) {
+        rows.clear();
+        for (int k : selectStripFrames(rangeTimes, strip ? *strip : static_cast<int>(rangeTimes.size()), rowsFile))
+            rows.push_back(inRange[static_cast<std::size_t>(k)]);
+    }
 
     const std::vector<BodyFrame> frames =
         calcBodyFrames(model, motion ? &*motion : nullptr, tensions ? &*tensions : nullptr, rows);

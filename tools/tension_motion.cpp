@@ -298,4 +298,20 @@ TensionMotionSummary summarizeTensionMotion(const Model& model, const TensionMot
     return summary;
 }
 
+int countFramesWithZAtMost(const TensionMotionResult& run, const TensionMotionResult& reference) {
+    if (run.report.times != reference.report.times)
+        throw Error("tension runs: the two reports are of different frames (" + std::to_string(run.report.times.size()) +
+                    " and " + std::to_string(reference.report.times.size()) + " rows)");
+    const std::size_t status = findColumn(run.report, "status"), z = findColumn(run.report, "Z");
+    const std::size_t referenceStatus = findColumn(reference.report, "status"), referenceZ = findColumn(reference.report, "Z");
+    int count = 0;
+    for (std::size_t r = 0; r < run.report.rows.size(); ++r) {
+        const std::vector<double>& row = run.report.rows[r];
+        const std::vector<double>& other = reference.report.rows[r];
+        if (row[status] == kMissingInputStatus || other[referenceStatus] == kMissingInputStatus) continue;
+        count += row[z] <= other[referenceZ];
+    }
+    return count;
+}
+
 }  // namespace sinew

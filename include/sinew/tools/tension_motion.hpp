@@ -81,6 +81,11 @@ struct TensionMotionSummary {
 };
 TensionMotionSummary summarizeTensionMotion(const Model& model, const TensionMotionResult& result);
 
+// The frames (report rows solved in both: status 0-2) where `run`'s Z is at most `reference`'s, the two runs
+// being of the same motion and options (the paper's comparison: the QP's Z against the LP's). Throws
+// sinew::Error when their report times differ.
+int countFramesWithZAtMost(const TensionMotionResult& run, const TensionMotionResult& reference);
+
 // The table's columns must be exactly the model's coordinates, quaternions included (readCoordinateSamples
 // says what is missing or extra). Throws sinew::Error when the finite rows left
 // are too few for the splines.
