@@ -172,6 +172,22 @@ struct LpSolver::Backend {
     }
 };
 
+// Phase 1's x is any point that needs the least reserves, its tensions as large as the bounds allow (a wire
+// at 1e6 N on the kick). With the reserves given (tau less them), the LP's own objective picks the least
+// total tension among those points; the frame stays Infeasible, its reserves reported.
+void LpSolver::solveWithReserves(const DistributionProblem& problem, const Eigen::VectorXd& reserve,
+                                 DistributionResult& result) {
+    withReserves_ = problem;
+    withReserves_.target -= reserve;
+    // Phase 1 meets the band's edges: a hair of slack so that roundoff leaves the shifted LP feasible.
+    const double scale = std::max(1.0, problem.target.cwiseAbs().maxCoeff());
+    withReserves_.tolerance.array() += 1e-9 * scale;
+    backend_->load(withReserves_);
+    if (backend_->run(withReserves_) != 0) return;  // phase 1's x stands
+    result.x = Eigen::Map<const Eigen::VectorXd>(backend_->simplex.primalColumnSolution(), problem.getNumVariables());
+    result.iterations += backend_->simplex.numberIterations();
+}
+
 LpSolver::LpSolver() : backend_(std::make_unique<Backend>()) {}
 LpSolver::~LpSolver() = default;
 
@@ -196,6 +212,7 @@ void LpSolver::solve(const DistributionProblem& problem, DistributionResult& res
             if (reserve.cwiseAbs().maxCoeff() > 1e-6 * scale) {  // Clp's feasibility tolerance is 1e-7
                 result.status = DistributionStatus::Infeasible;
                 result.reserve = reserve;
+                solveWithReserves(problem, reserve, result);
             } else {
                 startFromSlacksAndFreeColumns(problem, backend_->simplex, backend_->rowTaken);
                 backend_->simplex.dual();

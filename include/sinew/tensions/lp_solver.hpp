@@ -23,14 +23,18 @@ public:
     LpSolver& operator=(const LpSolver&) = delete;
 
     // Solves `problem` (validated; throws sinew::Error when malformed) into `result`. result.multipliers
-    // are the row duals y (reduced costs cost - A^T y); x is within its bounds (Clp's answer, clamped).
+    // are the row duals y (reduced costs cost - A^T y); x is within its bounds (Clp's answer, clamped). An
+    // infeasible frame gets phase 1's least (L1) reserves and, among the x that reach them, the least cost.
     void solve(const DistributionProblem& problem, DistributionResult& result) override;
     // The next solve starts cold: a new ClpSimplex and the all-slack basis with the free columns basic.
     void reset() override;
 
 private:
+    void solveWithReserves(const DistributionProblem& problem, const Eigen::VectorXd& reserve, DistributionResult& result);
+
     struct Backend;
     std::unique_ptr<Backend> backend_;
+    DistributionProblem withReserves_;  // an infeasible frame's problem with its reserves taken off tau
 };
 
 // The phase-1 LP alone: min Σ|reserve_i| over x within its bounds such that every row of A x + reserve is
