@@ -38,7 +38,7 @@ fi
 build/bin/sinew inverse-dynamics "$subject" "$motion" "${window[@]}" -o "$kick/kick_inverse_dynamics.sto"
 build/bin/sinew tensions "$subject" "$motion" --method lp,qp --max-tension 1e6 "${window[@]}" -o "$kick/kick.sto"
 echo "paper (Table 2, 2 GHz Pentium IV): lp 0.375 s/frame, Z 8,622 N^2; qp 27.25 s/frame, Z 2,339 N^2"
-# The paper's Fig. 10 analogue: the kick's moment, and the whole second to play in a browser.
+# The paper's Fig. 10 analogue: the moment of the strike, and the kick to play in a browser.
 # The colour scale tops at 2 kN: at the strike the LP drives a few wires to its 1e6 N bound.
 build/bin/sinew render "$subject" --motion "$motion" --tensions "$kick/kick_lp.sto" --time 3.35 --max-tension 2000 \
   -o "$kick/kick_lp.png"
