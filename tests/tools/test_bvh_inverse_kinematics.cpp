@@ -11,6 +11,8 @@
 #include <random>
 
 #include "sinew/core/kinematics.hpp"
+#include "sinew/core/virtual_link_equilibrium.hpp"
+#include "sinew/core/wire_path.hpp"
 #include "sinew/io/bvh_file.hpp"
 #include "sinew/io/bvh_map.hpp"
 #include "sinew/io/model_file.hpp"
@@ -119,6 +121,15 @@ TEST(BvhInverseKinematics, ASyntheticCaptureOfKnownAnglesComesBack) {
         Data expected(subject), got(fit.model);
         calcPositionKinematics(subject, expected, truth[f]);
         calcPositionKinematics(fit.model, got, fit.result.motion.q[f]);
+        // The virtual links, which no target sees, sit where their wires balance at rest (the truth's are at
+        // the default pose's, which the body has left): the net force on each within the solver's tolerance.
+        calcVelocityKinematics(fit.model, got, Eigen::VectorXd::Zero(fit.model.getNumU()));
+        calcWirePaths(fit.model, got);
+        calcWireSpeeds(fit.model, got);
+        VirtualLinkEquilibriumData equilibrium(fit.model);
+        calcVirtualLinkResidual(fit.model, got, 0, equilibrium);
+        ASSERT_FALSE(equilibrium.links.empty());
+        EXPECT_LE(equilibrium.residual.lpNorm<Eigen::Infinity>(), 1e-6) << "frame " << f;
         for (const auto& [bvh, linkName] : map.joints) {
             const int b = model.findLinkIndex(linkName);
             const std::size_t k = static_cast<std::size_t>(b);

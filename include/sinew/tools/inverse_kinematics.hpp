@@ -78,6 +78,7 @@ public:
     InverseKinematicsReport solve(const InverseKinematicsTargets& targets, Eigen::VectorXd& q);
 
     const std::vector<MarkerTask>& getMarkerTasks() const { return markerTasks_; }
+    const Model& getModel() const { return model_; }
     const std::vector<CoordinateTask>& getCoordinateTasks() const { return coordinateTasks_; }
     const std::vector<OrientationTask>& getOrientationTasks() const { return orientationTasks_; }
 
@@ -136,7 +137,10 @@ private:
 };
 
 // A whole capture through the solver: every frame of `targets` in order, each warm-started from the last
-// (the first from q0). onFrame reports progress.
+// (the first from q0). No target sees a virtual link (a forked wire's massless node): each frame places them
+// where the wires through them balance at rest (calcVirtualLinkEquilibrium under their force laws, zero
+// speeds), as the hang holds them, warm-started from the last frame's; left where q0 has them, they would
+// stay behind at the start while the body moves on. onFrame reports progress.
 struct InverseKinematicsMotion {
     std::vector<Eigen::VectorXd> q;
     std::vector<InverseKinematicsReport> reports;
