@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "sinew/core/error.hpp"
+#include "sinew/core/kinematics.hpp"
+#include "sinew/core/wire_path.hpp"
 
 namespace sinew {
 namespace {
@@ -342,6 +344,13 @@ double recordVirtualLinkResidual(double worst, const VirtualLinkEquilibriumStatu
         throw Error("virtual-link equilibrium broke down at t = " + std::to_string(time) + " s (residual " +
                     std::to_string(status.residual) + " N after " + std::to_string(status.iterations) + " iterations)");
     return std::max(worst, status.residual);
+}
+
+const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibriumAtRest(const Model& model, Data& data, double time,
+                                                                     VirtualLinkEquilibriumData& eq) {
+    calcVelocityKinematics(model, data, Eigen::VectorXd::Zero(model.getNumU()));
+    calcWireSpeeds(model, data);
+    return calcVirtualLinkEquilibrium(model, data, time, eq);
 }
 
 }  // namespace sinew

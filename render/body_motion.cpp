@@ -123,10 +123,8 @@ std::vector<BodyFrame> calcBodyFrames(const Model& model, const PoseTable* motio
         calcWirePaths(model, data);
         if (!motion && hasVirtualLinks) {
             // The default pose's virtual links are wherever the file put them: balance them at rest.
-            calcVelocityKinematics(model, data, Eigen::VectorXd::Zero(model.getNumU()));
-            calcWireSpeeds(model, data);
             if (!equilibrium) equilibrium.emplace(model);
-            calcVirtualLinkEquilibrium(model, data, time, *equilibrium);
+            calcVirtualLinkEquilibriumAtRest(model, data, time, *equilibrium);
         }
         if (tensions) {
             f = tensions->tensions.row(motion ? findRowAtTime(*tensions, time, motion->file, row) : row).transpose();

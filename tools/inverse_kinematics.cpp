@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 
 #include "sinew/core/coordinate_coupler.hpp"
 #include "sinew/core/error.hpp"
@@ -469,23 +468,17 @@ InverseKinematicsMotion solveInverseKinematics(InverseKinematicsSolver& solver, 
     InverseKinematicsMotion motion;
     Eigen::VectorXd q = q0;
     const Model& model = solver.getModel();
-    bool hasVirtualLinks = false;
-    for (const Link& link : model.getLinks()) hasVirtualLinks = hasVirtualLinks || link.isVirtual;
-    std::optional<VirtualLinkEquilibriumData> equilibrium;
-    if (hasVirtualLinks) equilibrium.emplace(model);
+    VirtualLinkEquilibriumData equilibrium(model);
     Data data(model);
-    const Eigen::VectorXd atRest = Eigen::VectorXd::Zero(model.getNumU());
-    Eigen::VectorXd u = atRest;
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(model.getNumU());
     const int frames = static_cast<int>(targets.size());
     for (int k = 0; k < frames; ++k) {
         motion.reports.push_back(solver.solve(targets[static_cast<std::size_t>(k)], q));
-        if (equilibrium) {
+        if (!equilibrium.links.empty()) {
             calcPositionKinematics(model, data, q);
-            calcVelocityKinematics(model, data, atRest);
             calcWirePaths(model, data);
-            calcWireSpeeds(model, data);
-            calcVirtualLinkEquilibrium(model, data, 0, *equilibrium);
-            getVirtualLinkCoordinates(model, data, *equilibrium, q, u);
+            calcVirtualLinkEquilibriumAtRest(model, data, 0, equilibrium);
+            getVirtualLinkCoordinates(model, data, equilibrium, q, u);
         }
         motion.q.push_back(q);
         if (onFrame) onFrame(k + 1, frames);

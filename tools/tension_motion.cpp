@@ -260,9 +260,7 @@ double mean(const std::vector<double>& values) {
 }
 
 std::size_t findColumn(const StorageTable& table, const std::string& name) {
-    const auto it = std::find(table.columns.begin(), table.columns.end(), name);
-    if (it == table.columns.end()) throw Error("tension summary: table '" + table.name + "' has no column " + name);
-    return static_cast<std::size_t>(it - table.columns.begin());
+    return static_cast<std::size_t>(matchStorageColumns(table, {name}, ExtraColumns::Allow)[0]);
 }
 
 }  // namespace

@@ -68,6 +68,12 @@ struct VirtualLinkEquilibriumData {
 const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibrium(const Model& model, Data& data, double time,
                                                                VirtualLinkEquilibriumData& eq);
 
+// The same with every speed zero (the bones at rest), for a pose whose virtual links no one observed (an
+// inverse-kinematics fit, a picture of a motion table): where the wires' force laws hold them at `time`.
+// Needs calcPositionKinematics and calcWirePaths at the pose; fills Data's velocities and wire speeds.
+const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibriumAtRest(const Model& model, Data& data, double time,
+                                                                     VirtualLinkEquilibriumData& eq);
+
 // The pieces of the solve, for tests: at the poses and twists of the virtual links in `data`, the wire paths
 // and speeds through them, their tensions and eq.residual (calcVirtualLinkResidual); eq.stiffness and
 // eq.boneRate at the state of the last residual (calcVirtualLinkStiffness).
