@@ -105,6 +105,8 @@ void bindResults(py::module_& m) {
         .def_readonly("activations", &TensionMotionResult::activations)
         .def_readonly("reserves", &TensionMotionResult::reserves)
         .def_readonly("contact", &TensionMotionResult::contact)
+        .def_readonly("joint_loads", &TensionMotionResult::jointLoads)
+        .def_readonly("ligament_stress", &TensionMotionResult::ligamentStress)
         .def_readonly("report", &TensionMotionResult::report)
         .def_readonly("flagged_frames", &TensionMotionResult::flaggedFrames)
         .def_readonly("infeasible_frames", &TensionMotionResult::infeasibleFrames)

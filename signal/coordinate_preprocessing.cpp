@@ -100,9 +100,7 @@ void padAndFilter(Eigen::VectorXd& times, Eigen::MatrixXd& values, double cutoff
     // Uneven steps (even the rounding of a printed table) trigger resampling at the smallest step.
     if (span / static_cast<double>(rows - 1) - smallestStep > std::numeric_limits<double>::epsilon()) {
         if (span / smallestStep > kMaxResampledRows) out.samplePeriod = span / kMaxResampledRows;
-        std::vector<SmoothingSpline> splines;
-        for (Eigen::Index j = 0; j < values.cols(); ++j)
-            splines.push_back(SmoothingSpline::fitFromErrorVariance(kResampleDegree, times, values.col(j), 0.0));
+        const std::vector<SmoothingSpline> splines = SmoothingSpline::interpolateColumns(kResampleDegree, times, values);
         // The grid accumulates the step (x += dt) exactly as GCVSplineSet::constructStorage does, so its
         // times carry the same rounding as OpenSim's output.
         std::vector<double> grid;
@@ -135,8 +133,7 @@ CoordinateTrajectory preprocessCoordinates(const Eigen::VectorXd& times, const E
                     std::to_string(options.finalTime) + "] s lies outside the processed table's [" +
                     std::to_string(t(0)) + ", " + std::to_string(t(t.size() - 1)) + "] s");
     // GCVSplineSet(5, storage) fits each column with error variance 0: interpolating splines.
-    for (Eigen::Index j = 0; j < values.cols(); ++j)
-        out.splines.push_back(SmoothingSpline::fitFromErrorVariance(options.splineDegree, t, out.processedValues.col(j), 0.0));
+    out.splines = SmoothingSpline::interpolateColumns(options.splineDegree, t, out.processedValues);
 
     // InverseDynamicsTool::run: the rows from findIndex(max(first, start)) to findIndex(min(last, final)).
     const Eigen::Index first = lastRowAtOrBefore(t, std::max(t(0), options.startTime));

@@ -162,7 +162,14 @@ public:
 
     NaturalSplineFitter(int degree, const Eigen::Ref<const Eigen::VectorXd>& x,
                         const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::Ref<const Eigen::VectorXd>& weights)
-        : x_(x), y_(y) {
+        : NaturalSplineFitter(degree, x, weights) {
+        setValues(y);
+    }
+
+    // The sites' basis, collocation and roughness alone: what every series sampled at these sites shares,
+    // and the costly part of a fit (setValues then takes O(n) per series).
+    NaturalSplineFitter(int degree, const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& weights)
+        : x_(x) {
         if (degree < 1 || degree > 2 * SmoothingSpline::kMaxHalfOrder - 1 || degree % 2 == 0)
             throw Error("smoothing spline: degree " + std::to_string(degree) + "; expected 1, 3, 5 or 7");
         m_ = (degree + 1) / 2;
@@ -170,14 +177,11 @@ public:
         if (n_ < 2 * m_)
             throw Error("smoothing spline: " + std::to_string(n_) + " samples; degree " + std::to_string(degree) +
                         " needs at least " + std::to_string(2 * m_));
-        if (y.size() != x.size())
-            throw Error("smoothing spline: " + std::to_string(y.size()) + " values for " + std::to_string(n_) + " sites");
         w_ = weights.size() == 0 ? Eigen::VectorXd::Ones(n_) : Eigen::VectorXd(weights);
         if (w_.size() != n_)
             throw Error("smoothing spline: " + std::to_string(w_.size()) + " weights for " + std::to_string(n_) + " sites");
         for (Eigen::Index i = 0; i < n_; ++i) {
             if (!std::isfinite(x_(i))) throw Error("smoothing spline: site " + sample("x", i, x_(i)) + " is not finite");
-            if (!std::isfinite(y_(i))) throw Error("smoothing spline: value " + sample("y", i, y_(i)) + " is not finite");
             if (!(std::isfinite(w_(i)) && w_(i) > 0))
                 throw Error("smoothing spline: weight " + sample("w", i, w_(i)) + "; expected a finite value > 0");
             if (i > 0 && !(x_(i) > x_(i - 1)))
@@ -209,8 +213,16 @@ public:
                 for (SparseMatrix::InnerIterator it(*a, j); it; ++it) b = std::max(b, static_cast<int>(it.row()) - j);
         H_ = SymmetricBand::fromSparse(H, b);
         P_ = SymmetricBand::fromSparse(P, b);
-        rhs_ = N_.transpose() * w_.cwiseProduct(y_);
         Z_ = Z;
+    }
+
+    void setValues(const Eigen::Ref<const Eigen::VectorXd>& y) {
+        if (y.size() != n_)
+            throw Error("smoothing spline: " + std::to_string(y.size()) + " values for " + std::to_string(n_) + " sites");
+        for (Eigen::Index i = 0; i < n_; ++i)
+            if (!std::isfinite(y(i))) throw Error("smoothing spline: value " + sample("y", i, y(i)) + " is not finite");
+        y_ = y;
+        rhs_ = N_.transpose() * w_.cwiseProduct(y_);
     }
 
     // p that weighs the roughness like the data term: trace(H) / trace(P).
@@ -389,6 +401,21 @@ SmoothingSpline SmoothingSpline::fitFromErrorVariance(int degree, const Eigen::R
         return t.meanSquaredResidual - variance * (2 * t.residualDegreesOfFreedom / n - 1);
     };
     return fitter.makeSpline(minimize(fitter, meanSquaredError, true));
+}
+
+std::vector<SmoothingSpline> SmoothingSpline::interpolateColumns(int degree, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                                const Eigen::Ref<const Eigen::MatrixXd>& values) {
+    if (values.rows() != x.size())
+        throw Error("smoothing spline: " + std::to_string(values.rows()) + " rows of values for " +
+                    std::to_string(x.size()) + " sites");
+    NaturalSplineFitter fitter(degree, x, Eigen::VectorXd());
+    std::vector<SmoothingSpline> splines;
+    splines.reserve(static_cast<std::size_t>(values.cols()));
+    for (Eigen::Index j = 0; j < values.cols(); ++j) {
+        fitter.setValues(values.col(j));
+        splines.push_back(fitter.makeSpline(fitter.solve(0)));
+    }
+    return splines;
 }
 
 double SmoothingSpline::calcValue(double t) const { return calcDerivative(t, 0); }

@@ -37,12 +37,11 @@ MeasuredLoads::MeasuredLoads(const Model& model, const ExternalLoads& loads) {
         // Forces (N), torques (N m) and points (m) of a measured load stay far below this; beyond it the
         // generalized forces overflow or drown every other load.
         checkStorageMagnitudes(table, {columns.begin(), columns.end()}, 1e7, "an external load (N, N m or m)");
-        Eigen::VectorXd values(times.size());
-        for (int axis = 0; axis < 3; ++axis) {
+        Eigen::MatrixXd values(times.size(), 3);
+        for (int axis = 0; axis < 3; ++axis)
             for (Eigen::Index r = 0; r < times.size(); ++r)
-                values[r] = table.rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(columns[static_cast<std::size_t>(axis)])];
-            channel.splines.push_back(SmoothingSpline::fitFromErrorVariance(degree, times, values, 0));
-        }
+                values(r, axis) = table.rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(columns[static_cast<std::size_t>(axis)])];
+        channel.splines = SmoothingSpline::interpolateColumns(degree, times, values);
         return channel;
     };
     for (const ExternalForce& force : loads.forces) {

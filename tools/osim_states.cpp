@@ -72,10 +72,10 @@ CoordinateTrajectory readOsimStates(const Model& model, const StorageTable& stat
     trajectory.q = q.middleRows(first, frames);
     trajectory.qdot = u.middleRows(first, frames);
     trajectory.qddot.resize(frames, n);
-    for (int c = 0; c < n; ++c) {
-        const SmoothingSpline speed = SmoothingSpline::fitFromErrorVariance(5, times, u.col(c), 0.0);
-        for (Eigen::Index f = 0; f < frames; ++f) trajectory.qddot(f, c) = speed.calcDerivative(trajectory.times[f], 1);
-    }
+    const std::vector<SmoothingSpline> speeds = SmoothingSpline::interpolateColumns(5, times, u);
+    for (int c = 0; c < n; ++c)
+        for (Eigen::Index f = 0; f < frames; ++f)
+            trajectory.qddot(f, c) = speeds[static_cast<std::size_t>(c)].calcDerivative(trajectory.times[f], 1);
     trajectory.processedTimes = times;
     trajectory.processedValues = q;
     return trajectory;

@@ -23,14 +23,12 @@ namespace {
 // StaticOptimization fits GCVSplineSet(5, states) through those and takes the u splines' derivative as
 // the target accelerations (StaticOptimizationTarget::computeConstraintVector).
 std::vector<SmoothingSpline> fitSpeedSplines(const CoordinateTrajectory& trajectory) {
-    std::vector<SmoothingSpline> splines;
     const Eigen::VectorXd& times = trajectory.processedTimes;
-    Eigen::VectorXd speeds(times.size());
-    for (const SmoothingSpline& coordinate : trajectory.splines) {
-        for (Eigen::Index r = 0; r < times.size(); ++r) speeds[r] = coordinate.calcDerivative(times[r], 1);
-        splines.push_back(SmoothingSpline::fitFromErrorVariance(5, times, speeds, 0.0));
-    }
-    return splines;
+    Eigen::MatrixXd speeds(times.size(), static_cast<Eigen::Index>(trajectory.splines.size()));
+    for (Eigen::Index c = 0; c < speeds.cols(); ++c)
+        for (Eigen::Index r = 0; r < times.size(); ++r)
+            speeds(r, c) = trajectory.splines[static_cast<std::size_t>(c)].calcDerivative(times[r], 1);
+    return SmoothingSpline::interpolateColumns(5, times, speeds);
 }
 
 // The rows whose coordinates are all finite; `missing` gets the indices of the others within

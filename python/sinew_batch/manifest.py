@@ -11,7 +11,8 @@ PIPELINES = ("inverse-dynamics", "tensions")
 # `sinew tensions -o tensions.sto` writes beside it (activations for so, contact forces for a model with feet).
 OUTPUT_FILES = {
     "inverse-dynamics": ("inverse_dynamics.sto",),
-    "tensions": ("tensions.sto", "tensions_report.sto", "tensions_activations.sto", "tensions_contact.sto"),
+    "tensions": ("tensions.sto", "tensions_report.sto", "tensions_activations.sto", "tensions_contact.sto",
+                 "tensions_joint_loads.sto", "tensions_ligament_stress.sto"),
 }
 TENSION_FIELDS = ("method", "max_tension", "tolerance", "contact")
 

@@ -66,7 +66,9 @@ def _tensions(trial, model, loads):
     _check_lowpass(trial.lowpass, motion, trial.motion)
     result = sinew.run_tension_analysis(model, motion, loads, options=options)
     tables = {"tensions.sto": result.tensions, "tensions_report.sto": result.report}
-    for name, table in (("tensions_activations.sto", result.activations), ("tensions_contact.sto", result.contact)):
+    optional = (("tensions_activations.sto", result.activations), ("tensions_contact.sto", result.contact),
+                ("tensions_joint_loads.sto", result.joint_loads), ("tensions_ligament_stress.sto", result.ligament_stress))
+    for name, table in optional:
         if table.columns:
             tables[name] = table
     figures = {"frames": len(result.report), "infeasible_frames": result.infeasible_frames,

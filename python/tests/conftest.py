@@ -14,6 +14,7 @@ SHARED_DIR = pathlib.Path(os.environ.get("SINEW_SHARED_DIR", SOURCE_DIR.parent /
 ARM26_YAML = SOURCE_DIR / "models" / "arm26.yaml"
 WHOLE_BODY_YAML = SOURCE_DIR / "models" / "whole_body" / "whole_body.yaml"
 OPENSIM_ARM26 = SHARED_DIR / "data" / "opensim" / "arm26"
+OPENSIM_GAIT2354 = SHARED_DIR / "data" / "opensim" / "gait2354"
 
 
 def run_cli(*args):

@@ -122,7 +122,9 @@ def test_trials_match_the_cli(study):
     for _, command in TRIALS:
         run_cli(*[arg.format(model=ARM26_YAML, root=root, cli=root / "cli") for arg in command])
     ours = output_files(root)
-    assert len(ours) == 1 + 2 + 2 + 2  # ID; tensions and report of each tension trial
+    cli_files = {str("out" / path.relative_to(root / "cli")) for path in (root / "cli").rglob("*") if path.is_file()}
+    assert set(ours) == cli_files  # the same set of files, the somatosensory tables included
+    assert len(ours) == 1 + 3 * 3  # ID; tensions, report and joint loads of each tension trial
     for name, content in ours.items():
         cli_file = root / "cli" / pathlib.Path(name).relative_to("out")
         assert content == cli_file.read_bytes(), name
@@ -278,7 +280,7 @@ def test_a_killed_worker_leaves_no_partial_file_and_the_rerun_completes(study, t
     reference = tmp_path / "reference"
     run_quietly(write_study(reference))
     rows = [dict(row) for row, _ in TRIALS]
-    write_manifest(study, [rows[2]])  # the qp trial with loads: tensions and report
+    write_manifest(study, [rows[2]])  # the qp trial with loads: tensions, report and joint loads
     killed = subprocess.run([sys.executable, "-c", KILLED_RUN, str(study), moment], capture_output=True, text=True)
     assert killed.returncode == -signal.SIGKILL, killed.stdout + killed.stderr
     final, temporary = final_and_temporary(root / "out" / "reach")
@@ -286,9 +288,10 @@ def test_a_killed_worker_leaves_no_partial_file_and_the_rerun_completes(study, t
     if moment == "write":  # the tensions written, the report not yet: nothing under a final name
         assert (final, temporary) == ([], ["tensions.sto"])
     else:  # the tensions renamed, whole; without their stamp the trial is not done
-        assert (final, temporary) == (["tensions.sto"], ["tensions.batch.json", "tensions_report.sto"])
+        assert (final, temporary) == (["tensions.sto"],
+                                      ["tensions.batch.json", "tensions_joint_loads.sto", "tensions_report.sto"])
     assert statuses(study) == ["ok"]
     assert final_and_temporary(root / "out" / "reach") == (
-        ["tensions.batch.json", "tensions.sto", "tensions_report.sto"], [])
+        ["tensions.batch.json", "tensions.sto", "tensions_joint_loads.sto", "tensions_report.sto"], [])
     assert output_files(root) == {name: content for name, content in output_files(reference).items()
                                   if name.startswith("out/reach/")}

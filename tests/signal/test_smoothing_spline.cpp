@@ -132,6 +132,28 @@ TEST(SmoothingSpline, MatchesTheDenseNaturalSplineForEveryDegreeAndP) {
     }
 }
 
+// Many series on the same sites share one basis: each column must still be its own interpolant.
+TEST(SmoothingSpline, InterpolatesEveryColumnAsTheDenseNaturalSplineDoes) {
+    for (int degree : {1, 3, 5, 7}) {
+        const Samples s = randomSamples(14, 30 + degree);
+        Eigen::MatrixXd values(s.x.size(), 3);
+        for (int c = 0; c < 3; ++c) values.col(c) = randomSamples(14, 40 + 3 * degree + c).y;
+        const std::vector<SmoothingSpline> splines = SmoothingSpline::interpolateColumns(degree, s.x, values);
+        ASSERT_EQ(splines.size(), 3u);
+        for (int c = 0; c < 3; ++c) {
+            const DenseNaturalSpline reference(degree, s.x, values.col(c), Eigen::VectorXd::Ones(s.x.size()), 0.0);
+            for (int order = 0; order < degree; ++order) {
+                double scale = 0;
+                for (double t : evaluationPoints(degree)) scale = std::max(scale, std::abs(reference.derivative(t, order)));
+                for (double t : evaluationPoints(degree))
+                    EXPECT_NEAR(splines[static_cast<std::size_t>(c)].calcDerivative(t, order), reference.derivative(t, order),
+                                1e-8 * (scale + 1))
+                        << "degree " << degree << " column " << c << " t " << t << " order " << order;
+            }
+        }
+    }
+}
+
 TEST(SmoothingSpline, ReproducesPolynomialsOfDegreeBelowM) {
     for (int degree : {1, 3, 5, 7}) {
         const int m = (degree + 1) / 2;
@@ -279,6 +301,12 @@ TEST(SmoothingSpline, RefusesBadInput) {
     EXPECT_TRUE(refused([&] { SmoothingSpline::fitFromGCV(5, s.x, s.y, w); }, "w[2]", "w[2] = 0"));
     EXPECT_TRUE(refused([&] { SmoothingSpline::fitForSmoothingParameter(5, s.x, s.y, -1); }, "smoothing parameter", "p < 0"));
     EXPECT_TRUE(refused([&] { SmoothingSpline::fitFromErrorVariance(5, s.x, s.y, -1); }, "error variance", "var < 0"));
+    Eigen::MatrixXd columns(10, 2);
+    columns << s.y, s.y;
+    columns(4, 1) = std::nan("");
+    EXPECT_TRUE(refused([&] { SmoothingSpline::interpolateColumns(5, s.x, columns); }, "y[4]", "column NaN"));
+    EXPECT_TRUE(refused([&] { SmoothingSpline::interpolateColumns(5, s.x, columns.topRows(9)); }, "9 rows of values for 10 sites",
+                        "9 rows"));
     const SmoothingSpline spline = SmoothingSpline::fitFromGCV(5, s.x, s.y);
     EXPECT_TRUE(refused([&] { spline.calcDerivative(0.5, -1); }, "derivative order -1", "order -1"));
     EXPECT_TRUE(refused([&] { spline.calcValue(std::nan("")); }, "non-finite", "t NaN"));

@@ -4,6 +4,7 @@
 // 1986) that OpenSim's GCVSpline / SimTK::SplineFitter fit, computed here with B-splines and banded
 // factorizations (docs/signal-processing.md, "Smoothing splines").
 #include <Eigen/Core>
+#include <vector>
 
 namespace sinew {
 
@@ -35,6 +36,12 @@ public:
     static SmoothingSpline fitFromErrorVariance(int degree, const Eigen::Ref<const Eigen::VectorXd>& x,
                                                 const Eigen::Ref<const Eigen::VectorXd>& y, double variance,
                                                 const Eigen::Ref<const Eigen::VectorXd>& weights = Eigen::VectorXd());
+
+    // The interpolating splines (fitFromErrorVariance with variance 0, all weights 1) of every column of
+    // `values` (n rows, one per site): the sites' basis is built once for all the columns, which makes a
+    // motion's hundreds of coordinates cost little more than one.
+    static std::vector<SmoothingSpline> interpolateColumns(int degree, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                                           const Eigen::Ref<const Eigen::MatrixXd>& values);
 
     double calcValue(double t) const;
     // d^order s / dt^order at t for order >= 0 (zero above the degree); throws sinew::Error for order < 0.
