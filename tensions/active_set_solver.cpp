@@ -31,6 +31,16 @@ bool updateCholesky(Eigen::MatrixXd& L, Eigen::VectorXd& w, double sign) {
     return true;
 }
 
+// The equality rows met to the tolerance an active-set answer is held to (relative to the rows' size).
+bool meetsEqualityRows(const DistributionProblem& problem, const DistributionResult& answer, double tolerance) {
+    if (answer.x.size() != problem.getNumVariables() || !answer.x.allFinite()) return false;
+    const Eigen::VectorXd residual = problem.target - problem.A * answer.x;
+    const double scale = std::max({1.0, problem.target.cwiseAbs().maxCoeff(), (problem.target - residual).cwiseAbs().maxCoeff()});
+    for (int i = 0; i < problem.getNumRows(); ++i)
+        if (problem.isEquality[static_cast<std::size_t>(i)] && std::abs(residual[i]) > tolerance * scale) return false;
+    return true;
+}
+
 }  // namespace
 
 ActiveSetSolver::ActiveSetSolver(ActiveSetOptions options) : options_(options) {}
@@ -79,6 +89,7 @@ void ActiveSetSolver::setUpFrame(const DistributionProblem& problem) {
     for (int i = 0; i < rows; ++i) sigma_[i] = problem.isEquality[static_cast<std::size_t>(i)] ? equalitySigma : 1.0;
 
     const int reduced = rows - rank_;
+    if (center_.size() != numBounded) center_.setZero(numBounded);
     v_.resize(numBounded);
     x_.resize(numBounded);
     slopeOfX_.resize(numBounded);
@@ -126,13 +137,13 @@ void ActiveSetSolver::fromReduced(const Eigen::VectorXd& reduced, Eigen::VectorX
     for (Eigen::Index k = support; k < rowVector.size(); ++k) rowVector[rowOrder_[static_cast<std::size_t>(k)]] = reduced[k - rank_];
 }
 
-// x(y) = clamp(a_j^T y / weight_j) and the dual gradient tau - Sigma y - A_bounded x (docs/tensions.md, eq. QP-2).
+// x(y) = clamp(center_j + a_j^T y / weight_j) and the dual gradient tau - Sigma y - A_bounded x (docs/tensions.md, eq. QP-2).
 void ActiveSetSolver::evaluate(const DistributionProblem& problem) {
     gradient_ = problem.target - sigma_.cwiseProduct(y_);
     for (int j = 0; j < problem.getNumBounded(); ++j) {
         double aty = 0;
         for (SparseColumn it(problem.A, j); it; ++it) aty += it.value() * y_[it.row()];
-        v_[j] = aty / problem.weight[j];
+        v_[j] = center_[j] + aty / problem.weight[j];
         const double lower = problem.lower[j], upper = problem.upper[j];
         regime_[static_cast<std::size_t>(j)] = v_[j] <= lower ? AtLower : v_[j] >= upper ? AtUpper : Free;
         x_[j] = std::min(std::max(v_[j], lower), upper);
@@ -236,8 +247,9 @@ void ActiveSetSolver::solve(const DistributionProblem& problem, DistributionResu
     // would run to the cap: a frame still unsolved after kStallIterations steps, a few times what a
     // feasible frame takes cold, is checked for feasibility first.
     const int firstSteps = std::min(options_.maxIterations, kStallIterations);
+    center_.setZero(problem.getNumBounded());
     solveDual(problem, result, firstSteps);
-    if (result.status == DistributionStatus::Optimal) return;
+    if (result.status == DistributionStatus::Optimal) return refineProximally(problem, result);
     // Stalled, or an equality row left unmet: the phase-1 LP tells an infeasible frame from a failure.
     const DistributionSolve solveLeastSquares = [this](const DistributionProblem& relaxed, DistributionResult& answer) {
         hasWarmStart_ = false;  // the stalled multipliers are no start
@@ -249,7 +261,7 @@ void ActiveSetSolver::solve(const DistributionProblem& problem, DistributionResu
         hasWarmStart_ = true;
         solveDual(problem, result, options_.maxIterations - firstSteps);
         result.iterations += firstSteps;
-        if (result.status == DistributionStatus::Optimal) return;
+        if (result.status == DistributionStatus::Optimal) return refineProximally(problem, result);
     }
     if (!options_.ipoptFallback) return;
     if (!ipopt_) ipopt_ = std::make_unique<IpoptSolver>();
@@ -262,10 +274,44 @@ void ActiveSetSolver::solve(const DistributionProblem& problem, DistributionResu
     y_ = result.multipliers;
     hasWarmStart_ = true;
     solveDual(problem, polished_, kPolishIterations);
-    if (polished_.status != DistributionStatus::Optimal) return;
-    polished_.iterations += result.iterations;
-    polished_.usedIpopt = true;
-    std::swap(result, polished_);
+    if (polished_.status == DistributionStatus::Optimal) {
+        polished_.iterations += result.iterations;
+        polished_.usedIpopt = true;
+        std::swap(result, polished_);
+    }
+    refineProximally(problem, result);
+}
+
+// The steps start from the LP's answer where its Z is the lower one and it meets the equality rows: the
+// first step's Z is then at most the LP's (its objective at the LP's x is that Z). Each step starts at
+// y = 0, where x is its centre and every variable keeps its regime.
+void ActiveSetSolver::refineProximally(const DistributionProblem& problem, DistributionResult& result) {
+    if (options_.proximalSteps <= 0) return;
+    const int numBounded = problem.getNumBounded();
+    center_ = result.x.head(numBounded);
+    double centerError = result.torqueError;
+    if (options_.proximalFromLp) {
+        if (!lp_) lp_ = std::make_unique<LpSolver>();
+        lp_->solve(problem, lpAnswer_);
+        if (lpAnswer_.torqueError < centerError && meetsEqualityRows(problem, lpAnswer_, options_.infeasibilityTolerance)) {
+            center_ = lpAnswer_.x.head(numBounded);
+            centerError = lpAnswer_.torqueError;
+        }
+    }
+    for (int step = 0; step < options_.proximalSteps; ++step) {
+        y_.setZero();
+        hasWarmStart_ = true;
+        solveDual(problem, proximal_);
+        if (proximal_.status != DistributionStatus::Optimal || !(proximal_.torqueError <= centerError)) break;
+        const bool levelled = centerError - proximal_.torqueError <= options_.proximalTolerance * centerError;
+        proximal_.iterations += result.iterations;
+        proximal_.usedIpopt = result.usedIpopt;
+        std::swap(result, proximal_);
+        if (levelled) break;
+        center_ = result.x.head(numBounded);
+        centerError = result.torqueError;
+    }
+    center_.setZero();
 }
 
 // The dual Newton active set alone, within maxIterations (default: the options'): Optimal, Infeasible
@@ -275,17 +321,18 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
     setUpFrame(problem);
     const int numBounded = problem.getNumBounded();
     const double tauScale = problem.target.size() ? problem.target.cwiseAbs().maxCoeff() : 0.0;
-    bool converged = false, factorValid = false;
+    bool converged = false, factorValid = false, fullStep = false;
     int iterations = 0;
     for (;;) {
         evaluate(problem);
+        const bool exactStep = fullStep && regime_ == stepped_;
         toReduced(gradient_, reducedGradient_);
         // Size of the generalized forces: tau and A x (= tau - gradient - Sigma y).
         rowWork_ = problem.target - gradient_ - sigma_.cwiseProduct(y_);
         const double scale = std::max(tauScale, rowWork_.cwiseAbs().maxCoeff());
         const double gradientNorm = reducedGradient_.size() ? reducedGradient_.cwiseAbs().maxCoeff() : 0.0;
         if (!std::isfinite(gradientNorm)) break;
-        if (gradientNorm <= options_.tolerance * scale) {
+        if (gradientNorm <= options_.tolerance * scale || (exactStep && gradientNorm <= options_.roundoffTolerance * scale)) {
             converged = true;
             break;
         }
@@ -297,7 +344,9 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
         L_.triangularView<Eigen::Lower>().solveInPlace(reducedDirection_);
         L_.triangularView<Eigen::Lower>().adjoint().solveInPlace(reducedDirection_);
         fromReduced(reducedDirection_, direction_);
+        stepped_ = regime_;
         const double step = searchLine(problem);
+        fullStep = std::abs(step - 1) <= 1e-3;
         if (!std::isfinite(step)) break;
         y_ += step * direction_;
         ++iterations;
@@ -322,7 +371,7 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
     result.iterations = iterations;
     result.usedIpopt = false;
     calcResultSummary(problem, result);
-    result.objective = 0.5 * problem.weight.dot(x_.cwiseProduct(x_));
+    result.objective = 0.5 * problem.weight.dot((x_ - center_).cwiseAbs2());
     double equalityResidual = 0;
     const double rowScale = std::max({1.0, tauScale, (problem.target - result.residual).cwiseAbs().maxCoeff()});
     result.reserve.setZero(problem.getNumRows());
@@ -342,7 +391,7 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
     } else {
         result.status = DistributionStatus::Optimal;
     }
-    result.kkt = calcQpKktResiduals(problem, result.x, y_);
+    result.kkt = calcQpKktResiduals(problem, result.x, y_, center_);
     hasWarmStart_ = converged;
 }
 

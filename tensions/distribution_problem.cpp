@@ -49,15 +49,17 @@ double boundScale(double bound) { return std::isfinite(bound) ? std::max(1.0, st
 // Bound violation, and the Lagrangian's projected gradient g_j = first_j - (A^T y)_j: a variable at its
 // lower bound may only have g >= 0, at its upper g <= 0, free variables g = 0. Relative to the largest of
 // the two terms.
+// scaleFloor: the least size of the gradient's terms (a proximal QP's regulariser force at x, where its
+// own terms vanish at convergence).
 void addVariableResiduals(const DistributionProblem& problem, const Eigen::VectorXd& x, const Eigen::VectorXd& y,
-                          const Eigen::VectorXd& first, KktResiduals& kkt) {
+                          const Eigen::VectorXd& first, KktResiduals& kkt, double scaleFloor = 0) {
     const int numBounded = problem.getNumBounded();
     const Eigen::VectorXd Aty = problem.A.transpose() * y;
     Eigen::VectorXd magnitude = Eigen::VectorXd::Zero(problem.getNumVariables());
     for (int j = 0; j < problem.A.outerSize(); ++j)
         for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, j); it; ++it)
             magnitude[j] += std::abs(it.value() * y[it.row()]);
-    double scale = std::max(first.cwiseAbs().maxCoeff(), magnitude.maxCoeff());
+    double scale = std::max({first.cwiseAbs().maxCoeff(), magnitude.maxCoeff(), scaleFloor});
     if (!(scale > 0)) scale = 1;
     double dual = 0;
     for (int j = 0; j < problem.getNumVariables(); ++j) {
@@ -152,7 +154,7 @@ KktResiduals calcLpKktResiduals(const DistributionProblem& problem, const Eigen:
 }
 
 KktResiduals calcQpKktResiduals(const DistributionProblem& problem, const Eigen::VectorXd& x,
-                                const Eigen::VectorXd& y) {
+                                const Eigen::VectorXd& y, const Eigen::VectorXd& center) {
     KktResiduals kkt;
     const double rowScale = calcRowScale(problem, x);
     const Eigen::VectorXd residual = problem.target - problem.A * x;
@@ -165,7 +167,9 @@ KktResiduals calcQpKktResiduals(const DistributionProblem& problem, const Eigen:
     }
     Eigen::VectorXd first = Eigen::VectorXd::Zero(problem.getNumVariables());
     first.head(problem.getNumBounded()) = problem.weight.cwiseProduct(x.head(problem.getNumBounded()));
-    addVariableResiduals(problem, x, yAll, first, kkt);
+    const double regulariserForce = first.cwiseAbs().maxCoeff();
+    if (center.size() == problem.getNumBounded()) first.head(problem.getNumBounded()) -= problem.weight.cwiseProduct(center);
+    addVariableResiduals(problem, x, yAll, first, kkt, regulariserForce);
     return kkt;
 }
 

@@ -7,9 +7,18 @@
 #include "sinew/tensions/infeasible_frame.hpp"
 
 namespace sinew {
+namespace {
+
+// Every row of the activation problem is exact, so Σ |a|² is the objective, not a tie-break to walk away from.
+ActiveSetOptions withoutProximalSteps(ActiveSetOptions options) {
+    options.proximalSteps = 0;
+    return options;
+}
+
+}  // namespace
 
 StaticOptimizationSolver::StaticOptimizationSolver(double exponent, ActiveSetOptions options)
-    : exponent_(exponent), infeasibilityTolerance_(options.infeasibilityTolerance), activeSet_(options) {
+    : exponent_(exponent), infeasibilityTolerance_(options.infeasibilityTolerance), activeSet_(withoutProximalSteps(options)) {
     if (!(exponent >= 1) || !std::isfinite(exponent))
         throw Error("static optimization: activation exponent " + std::to_string(exponent) +
                     ", expected a finite value >= 1 (below 1 the sum of activations^exponent is not convex)");

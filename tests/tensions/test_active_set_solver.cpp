@@ -1,6 +1,6 @@
 // The active-set QP against Ipopt on random problems with the degeneracies of real models, its warm start
-// against cold solves, the Ipopt fallback against the uncapped active set, its infeasibility report, and
-// the KKT residuals it reports.
+// against cold solves, the Ipopt fallback against the uncapped active set, its infeasibility report, the
+// KKT residuals it reports, and its proximal steps against Ipopt's least squares and the LP.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,11 +10,20 @@
 #include "sinew/core/error.hpp"
 #include "sinew/tensions/active_set_solver.hpp"
 #include "sinew/tensions/ipopt_solver.hpp"
+#include "sinew/tensions/lp_solver.hpp"
 
 namespace sinew {
 namespace {
 
 using test::DistributionNlp;
+
+// The regularised QP itself (the proximal steps move its answer to a least-squares one, which Ipopt's QP
+// of the same weights does not find).
+ActiveSetOptions regularisedOnly() {
+    ActiveSetOptions options;
+    options.proximalSteps = 0;
+    return options;
+}
 
 void expectWithinBounds(const DistributionProblem& p, const Eigen::VectorXd& x, const std::string& name) {
     ASSERT_TRUE(x.allFinite()) << name;
@@ -28,7 +37,7 @@ TEST(ActiveSetSolver, MatchesIpoptOnRandomDegenerateProblems) {
     // Tensions of the targets in [-0.5, 1.5] x maximum, plus noise: bounds active on both sides.
     for (const test::RandomProblemOptions& o : test::makeProblemSweep(-0.5, 1.5, 0.1)) {
         const DistributionProblem p = test::makeRandomProblem(o);
-        ActiveSetSolver solver;
+        ActiveSetSolver solver(regularisedOnly());
         DistributionResult result;
         solver.solve(p, result);
         const std::string name = test::describe(o);
@@ -79,13 +88,13 @@ TEST(ActiveSetSolver, IpoptFallbackGivesTheActiveSetOptimum) {
     for (const test::RandomProblemOptions& o : test::makeProblemSweep(-0.5, 1.5, 0.1)) {
         const DistributionProblem p = test::makeRandomProblem(o);
         const std::string name = test::describe(o);
-        ActiveSetSolver uncapped;
+        ActiveSetSolver uncapped(regularisedOnly());
         DistributionResult reference;
         uncapped.solve(p, reference);
         ASSERT_EQ(reference.status, DistributionStatus::Optimal) << name;
         ASSERT_FALSE(reference.usedIpopt) << name;
 
-        ActiveSetOptions capped;
+        ActiveSetOptions capped = regularisedOnly();
         capped.maxIterations = 1;
         ActiveSetSolver withFallback(capped);
         DistributionResult result;
@@ -126,6 +135,62 @@ TEST(ActiveSetSolver, IpoptFallbackGivesTheActiveSetOptimum) {
         expectWithinBounds(p, result.x, name);
     }
     EXPECT_GE(fallbacks, 10);  // 11 of the 12 need more than one step
+}
+
+TEST(ActiveSetSolver, ProximalStepsReachTheLeastSquaresOfIpoptAndNoMoreErrorThanTheLp) {
+    // Reference: Ipopt's QP with the weights a millionth of the solver's, whose Z is near the least-squares
+    // minimum. Targets outside the bounds' reach (tensions in [-0.5, 1.5] x maximum) and
+    // within it (the LP then meets every band, Z <= ½ Σ δ²).
+    int regulariserVisible = 0;
+    for (const double high : {1.5, 0.9}) {
+        const double low = high > 1 ? -0.5 : 0.1;
+        for (const test::RandomProblemOptions& o : test::makeProblemSweep(low, high, high > 1 ? 0.1 : 0.0)) {
+            const DistributionProblem p = test::makeRandomProblem(o);
+            const std::string name = test::describe(o);
+            ActiveSetSolver regularised(regularisedOnly()), proximal;
+            DistributionResult first, refined;
+            regularised.solve(p, first);
+            proximal.solve(p, refined);
+            ASSERT_EQ(refined.status, DistributionStatus::Optimal) << name;
+            expectWithinBounds(p, refined.x, name);
+            EXPECT_LE(refined.torqueError, first.torqueError) << name;
+
+            DistributionProblem leastSquares = p;
+            leastSquares.weight *= 1e-6;
+            const test::IpoptReference reference = test::solveWithIpopt(leastSquares, DistributionNlp::Kind::Qp);
+            ASSERT_TRUE(reference.solved) << name;
+            const Eigen::VectorXd referenceResidual = p.target - p.A * reference.x;
+            const double referenceZ = 0.5 * referenceResidual.squaredNorm();
+            // Z at Ipopt's optimum exceeds the least-squares minimum Z(x*) by at most ½ w ‖x*‖²; x* is the refined x.
+            const double regulariserEnergy = 0.5 * leastSquares.weight.dot(refined.x.head(p.getNumBounded()).cwiseAbs2());
+            const double slack = 1e-6 * first.torqueError + regulariserEnergy + 1e-12;
+            EXPECT_LE(refined.torqueError, referenceZ + slack) << name;
+            // Lower than Ipopt's is fine (Ipopt stops at its tolerance), if it is the Z of an x that meets the rows.
+            const Eigen::VectorXd residual = p.target - p.A * refined.x;
+            EXPECT_NEAR(refined.torqueError, 0.5 * residual.squaredNorm(), 1e-12 * (1 + refined.torqueError)) << name;
+            const double rowScale = std::max({1.0, p.target.cwiseAbs().maxCoeff(), (p.A * refined.x).cwiseAbs().maxCoeff()});
+            for (int i = 0; i < p.getNumRows(); ++i) {
+                if (p.isEquality[static_cast<std::size_t>(i)]) {
+                    EXPECT_LE(std::abs(residual[i]), 1e-6 * rowScale) << name << " row " << i;
+                }
+            }
+            // The last proximal step's QP; where the targets are met to roundoff its gradient is roundoff too.
+            if (refined.torqueError > 1e-20 * rowScale * rowScale) {
+                EXPECT_LE(refined.kkt.getMax(), 1e-6) << name;
+            }
+            if (refined.torqueError < 1e-3 * first.torqueError) ++regulariserVisible;
+
+            if (high < 1) {
+                LpSolver lp;
+                DistributionResult banded;
+                lp.solve(p, banded);
+                ASSERT_EQ(banded.status, DistributionStatus::Optimal) << name;
+                EXPECT_LE(refined.torqueError, banded.torqueError * (1 + 1e-9)) << name;
+            }
+        }
+    }
+    // The regulariser's error, which the steps remove, is most of Z wherever the bounds let the targets be met.
+    EXPECT_GE(regulariserVisible, 12);
 }
 
 TEST(ActiveSetSolver, UnreachableEqualityRowIsInfeasibleWithItsReserve) {

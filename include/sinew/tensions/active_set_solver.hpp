@@ -17,14 +17,18 @@
 
 #include "sinew/tensions/distribution_problem.hpp"
 #include "sinew/tensions/ipopt_solver.hpp"
+#include "sinew/tensions/lp_solver.hpp"
 #include "sinew/tensions/tension_solver.hpp"
 
 namespace sinew {
 
 struct ActiveSetOptions {
     // Converged when the dual gradient (the rows' residual of the optimality conditions) is below this
-    // times the size of the generalized forces.
+    // times the size of the generalized forces; or below roundoffTolerance times it after a full Newton
+    // step that left the active set as it was, which solves the piecewise-quadratic dual exactly: what
+    // is left is the Newton matrix's rounding (about 1e-10 on the whole-body kick, whose K spans 1 to 1e8).
     double tolerance = 1e-11;
+    double roundoffTolerance = 1e-8;
     // Equality rows enter the Newton matrix with this times the mean a_j^T a_j / weight_j on the diagonal,
     // so that the matrix stays positive definite when a DOF is unreachable; they are then met to about
     // this relative accuracy (far below infeasibilityTolerance).
@@ -33,6 +37,20 @@ struct ActiveSetOptions {
     // Infeasible.
     double infeasibilityTolerance = 1e-6;
     int maxIterations = 500;
+    // After the regularised optimum, up to this many proximal steps: the same QP with the regulariser
+    // centred at the previous answer, ½ Σ weight (x - x_k)². Each step's Z = ½|tau - A x|² is no higher
+    // than at x_k, where the regulariser vanishes, so the steps walk towards a least-squares optimum and
+    // leave the regulariser the tie-break it is meant to be: the paper's QP (Eq. 14) minimises Z alone.
+    // They stop when Z falls by less than proximalTolerance of itself. 0: the regularised optimum (static
+    // optimization's, whose rows are all exact: there the regulariser is the objective). A step's
+    // objective and KKT residuals are its own QP's.
+    int proximalSteps = 12;
+    double proximalTolerance = 1e-6;
+    // The first step is centred at the LP's answer (lp_solver.hpp, the problem's band rows and costs) where
+    // that has the lower Z and meets the equality rows, so that Z(QP) <= Z(LP) on every frame: the
+    // regulariser holds back co-contractions whose gain in Z is small per newton, which the LP may use
+    // (an LP solve per frame, warm from the last).
+    bool proximalFromLp = true;
     // A frame the active set does not solve (iteration limit, numerical breakdown) that the phase-1 LP
     // finds feasible is solved again by Ipopt (ipopt_solver.hpp; DistributionResult::usedIpopt).
     bool ipoptFallback = true;
@@ -50,13 +68,17 @@ public:
     // answer); a feasible one the active set fails on goes to Ipopt (ActiveSetOptions::ipoptFallback).
     void solve(const DistributionProblem& problem, DistributionResult& result) override;
     // The next solve starts cold (y = 0).
-    void reset() override { hasWarmStart_ = false; }
+    void reset() override {
+        hasWarmStart_ = false;
+        if (lp_) lp_->reset();
+    }
 
 private:
     enum Regime : signed char { AtLower = -1, Free = 0, AtUpper = 1 };
     static constexpr int kStallIterations = 50;   // Newton steps before a feasibility check (phase 1)
     static constexpr int kPolishIterations = 20;  // dual Newton steps after the Ipopt fallback
     void solveDual(const DistributionProblem& problem, DistributionResult& result, int maxIterations = -1);
+    void refineProximally(const DistributionProblem& problem, DistributionResult& result);
     void setUpFrame(const DistributionProblem& problem);
     void evaluate(const DistributionProblem& problem);
     bool factorize(const DistributionProblem& problem);
@@ -76,10 +98,12 @@ private:
     Eigen::VectorXd supportWork_;       // (numSupportRows_)
     Eigen::VectorXd y_;                 // (rows) multipliers; kept between frames
     Eigen::VectorXd sigma_;             // (rows) 1 on tolerance rows, the regulariser on equality rows
-    Eigen::VectorXd v_;                 // (numBounded) a_j^T y / weight_j: the unclamped x
+    Eigen::VectorXd center_;            // (numBounded) the regulariser's centre: 0, or x_k in a proximal step
+    Eigen::VectorXd v_;                 // (numBounded) center_j + a_j^T y / weight_j: the unclamped x
     Eigen::VectorXd x_;                 // (numBounded)
     std::vector<Regime> regime_;        // (numBounded) at y
     std::vector<Regime> factored_;      // (numBounded) the regimes the factor holds
+    std::vector<Regime> stepped_;       // (numBounded) the regimes at the last step's start
     Eigen::MatrixXd K_;                 // (rows x rows) Newton matrix before reduction
     Eigen::MatrixXd L_;                 // (reduced) its Cholesky factor, lower
     Eigen::VectorXd gradient_, direction_, rowWork_;  // (rows)
@@ -92,6 +116,9 @@ private:
     std::vector<Event> events_;
     std::unique_ptr<IpoptSolver> ipopt_;  // the fallback, made on first use
     DistributionResult polished_;         // the fallback's answer after a few dual Newton steps
+    DistributionResult proximal_;         // a proximal step's answer, kept when it lowers the residual
+    std::unique_ptr<LpSolver> lp_;        // the proximal steps' start (ActiveSetOptions::proximalFromLp)
+    DistributionResult lpAnswer_;
 };
 
 }  // namespace sinew

@@ -79,10 +79,11 @@ struct DistributionResult {
 // (x, y), with reduced costs cost - A^T y.
 KktResiduals calcLpKktResiduals(const DistributionProblem& problem, const Eigen::VectorXd& x,
                                 const Eigen::VectorXd& y);
-// Residuals of the QP  min ½ Σ weight x² + ½ |tau - A x|²_tolerance rows  s.t. equality rows, bounds, at
-// (x, y); y on the tolerance rows is their residual by definition, only the equality rows' y are read.
+// Residuals of the QP  min ½ Σ weight (x - center)² + ½ |tau - A x|²_tolerance rows  s.t. equality rows,
+// bounds, at (x, y); y on the tolerance rows is their residual by definition, only the equality rows' y are
+// read. center (numBounded; empty: 0) is a proximal step's (ActiveSetOptions::proximalSteps).
 KktResiduals calcQpKktResiduals(const DistributionProblem& problem, const Eigen::VectorXd& x,
-                                const Eigen::VectorXd& y);
+                                const Eigen::VectorXd& y, const Eigen::VectorXd& center = Eigen::VectorXd());
 
 // Fills residual, torqueError and activeVariables of `result` from result.x.
 void calcResultSummary(const DistributionProblem& problem, DistributionResult& result);
