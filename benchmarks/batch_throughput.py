@@ -8,8 +8,10 @@ processes, and by a local process pool of 2, in alternation; and Dask's per-tria
 Each trial is `sinew tensions models/whole_body/whole_body_subject11.yaml models/whole_body/kick_11_01.mot
 --method lp --max-tension 1e6 --lowpass 6` over its own window of the kick (the demo's formulation), long
 enough (a second and more) that the figures are of the trials, not of start-up. Every configuration runs the
-same trials with force on (all work done again) into its own folder; Dask's workers and the direct call have
-the model loaded beforehand, so the overhead measured is the per-trial cost of scheduling, serialising the
+same trials with force on (all work done again) into its own folder. The direct call runs in an interpreter
+of its own (this one hosts the clusters' schedulers); it and Dask's workers have the model loaded beforehand,
+and it has the allocator settings sinew_batch gives a Dask worker (sinew_batch/allocator.py), so the overhead
+measured is the per-trial cost of scheduling, serialising the
 trial and its record, and the worker round trip. The process pool starts cold (spawned interpreters, each
 loading the model), as `--workers N` does."""
 import argparse
@@ -19,12 +21,14 @@ import os
 import pathlib
 import platform
 import statistics
+import subprocess
 import sys
 import tempfile
 import time
 
 import sinew
 import sinew_batch
+from sinew_batch.allocator import keep_freed_memory
 from sinew_batch.manifest import load_manifest
 from sinew_batch.trial import run_trial
 
@@ -51,15 +55,26 @@ def warm_model():
     _load_model(str(MODEL), file_sha256(MODEL))
 
 
-def run_direct(trials):
-    """The peer: each trial called in this process, one after another; returns wall s and each trial's s."""
+def run_direct_child(manifest, output):
+    """The peer, in a plain interpreter of its own (not beside the clusters' schedulers, whose event loops
+    share this process): the model loaded, then each trial called in turn. Prints wall s and each trial's s."""
+    trials = relocate(load_manifest(manifest), pathlib.Path(output))
+    warm_model()
+    keep_freed_memory()
     started = time.perf_counter()
     seconds = []
     for trial in trials:
         record = run_trial(trial, force=True)
         assert record["status"] == "ok", record
         seconds.append(record["seconds"])
-    return time.perf_counter() - started, seconds
+    print(json.dumps({"wall": time.perf_counter() - started, "seconds": seconds}))
+
+
+def run_direct(manifest, output):
+    child = subprocess.run([sys.executable, __file__, "--direct-child", str(manifest), str(output)],
+                           capture_output=True, text=True, check=True)
+    measured = json.loads(child.stdout.splitlines()[-1])
+    return measured["wall"], measured["seconds"]
 
 
 def run_batch(trials, **where):
@@ -91,7 +106,8 @@ def main():
     print(f"model {MODEL.name}: {census.links} links, {census.dof} DOF, {census.wires} wires; "
           f"{arguments.trials} trials of {arguments.window} s of the kick each; {os.cpu_count()} CPUs", flush=True)
     folder = pathlib.Path(tempfile.mkdtemp(prefix="sinew_batch_throughput_"))
-    trials = load_manifest(write_manifest(folder, arguments.trials, arguments.window))
+    manifest = write_manifest(folder, arguments.trials, arguments.window)
+    trials = load_manifest(manifest)
     warm_model()
     clusters = {workers: LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                                       dashboard_address=":0") for workers in (1, 2)}
@@ -102,7 +118,7 @@ def main():
     trial_seconds = []
     try:
         for repetition in range(arguments.repetitions):
-            wall, seconds = run_direct(relocate(trials, folder / "direct"))
+            wall, seconds = run_direct(manifest, folder / "direct")
             walls["direct"].append(wall)
             trial_seconds.append(seconds)
             walls["dask_1_worker"].append(run_batch(relocate(trials, folder / "dask1"), dask=clients[1]))
@@ -143,4 +159,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    if len(sys.argv) == 4 and sys.argv[1] == "--direct-child":
+        run_direct_child(sys.argv[2], sys.argv[3])
+    else:
+        main()

@@ -5,6 +5,7 @@ here and runs again on the next batch run (its outputs were never renamed into p
 import concurrent.futures
 import multiprocessing
 
+from .allocator import keep_freed_memory
 from .trial import run_trial, trial_record
 
 
@@ -26,6 +27,11 @@ def run_process_pool(trials, force, workers):
                 yield index, trial_record(trials[index], "failed", error=f"worker process died: {error}", seconds=0.0)
 
 
+def run_trial_on_worker(trial, force):
+    keep_freed_memory()
+    return run_trial(trial, force)
+
+
 def run_dask(trials, force, scheduler):
     """`scheduler`: a dask.distributed Client, or the address of a scheduler to connect to (tcp://host:8786;
     a SLURMCluster's or KubeCluster's scheduler_address)."""
@@ -33,7 +39,7 @@ def run_dask(trials, force, scheduler):
 
     client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
     try:
-        futures = client.map(run_trial, trials, force=force, pure=False)
+        futures = client.map(run_trial_on_worker, trials, force=force, pure=False)
         index_of = {future.key: index for index, future in enumerate(futures)}
         for future in as_completed(futures):
             index = index_of[future.key]
