@@ -31,14 +31,15 @@ bool updateCholesky(Eigen::MatrixXd& L, Eigen::VectorXd& w, double sign) {
     return true;
 }
 
-// The equality rows met to the tolerance an active-set answer is held to (relative to the rows' size).
-bool meetsEqualityRows(const DistributionProblem& problem, const DistributionResult& answer, double tolerance) {
-    if (answer.x.size() != problem.getNumVariables() || !answer.x.allFinite()) return false;
-    const Eigen::VectorXd residual = problem.target - problem.A * answer.x;
-    const double scale = std::max({1.0, problem.target.cwiseAbs().maxCoeff(), (problem.target - residual).cwiseAbs().maxCoeff()});
+// The largest equality-row residual relative to the rows' size (tau and A x = tau - residual): what an
+// answer is held to against ActiveSetOptions::infeasibilityTolerance.
+double calcEqualityResidual(const DistributionProblem& problem, const Eigen::VectorXd& residual) {
+    const double tauScale = problem.target.size() ? problem.target.cwiseAbs().maxCoeff() : 0.0;
+    const double rowScale = std::max({1.0, tauScale, (problem.target - residual).cwiseAbs().maxCoeff()});
+    double largest = 0;
     for (int i = 0; i < problem.getNumRows(); ++i)
-        if (problem.isEquality[static_cast<std::size_t>(i)] && std::abs(residual[i]) > tolerance * scale) return false;
-    return true;
+        if (problem.isEquality[static_cast<std::size_t>(i)]) largest = std::max(largest, std::abs(residual[i]) / rowScale);
+    return largest;
 }
 
 }  // namespace
@@ -293,7 +294,8 @@ void ActiveSetSolver::refineProximally(const DistributionProblem& problem, Distr
     if (options_.proximalFromLp) {
         if (!lp_) lp_ = std::make_unique<LpSolver>();
         lp_->solve(problem, lpAnswer_);
-        if (lpAnswer_.torqueError < centerError && meetsEqualityRows(problem, lpAnswer_, options_.infeasibilityTolerance)) {
+        if (lpAnswer_.torqueError < centerError &&
+            calcEqualityResidual(problem, lpAnswer_.residual) <= options_.infeasibilityTolerance) {
             center_ = lpAnswer_.x.head(numBounded);
             centerError = lpAnswer_.torqueError;
         }
@@ -372,16 +374,10 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
     result.usedIpopt = false;
     calcResultSummary(problem, result);
     result.objective = 0.5 * problem.weight.dot((x_ - center_).cwiseAbs2());
-    double equalityResidual = 0;
-    const double rowScale = std::max({1.0, tauScale, (problem.target - result.residual).cwiseAbs().maxCoeff()});
+    const double equalityResidual = calcEqualityResidual(problem, result.residual);
     result.reserve.setZero(problem.getNumRows());
-    for (int i = 0; i < problem.getNumRows(); ++i) {
-        if (problem.isEquality[static_cast<std::size_t>(i)]) {
-            equalityResidual = std::max(equalityResidual, std::abs(result.residual[i]) / rowScale);
-        } else {
-            result.objective += 0.5 * result.residual[i] * result.residual[i];
-        }
-    }
+    for (int i = 0; i < problem.getNumRows(); ++i)
+        if (!problem.isEquality[static_cast<std::size_t>(i)]) result.objective += 0.5 * result.residual[i] * result.residual[i];
     if (!converged) {
         result.status = DistributionStatus::Failed;
     } else if (equalityResidual > options_.infeasibilityTolerance) {
