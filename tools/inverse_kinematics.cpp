@@ -21,11 +21,27 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // otherwise, since every trial is closed again to roundoff before it is judged.
 constexpr double kLoopMerit = 1;
 constexpr int kActiveSetPasses = 8;
-constexpr int kGaussNewtonIterations = 10;
 constexpr int kLoopClosingIterations = 6;
+constexpr int kCurvatureRefreshIterations = 5;
 constexpr double kClosedGap = 1e-15;  // m: roundoff on a body's size
 
 bool hasScalarSpeed(const Joint& joint) { return joint.nq == joint.nu; }
+
+// d(theta)/d(delta) for exp(theta') = exp(delta) exp(theta): the inverse of SO(3)'s left Jacobian (Barfoot,
+// State Estimation for Robotics, eq. 7.82). Exact, so that a fit that cannot reach its targets still stops
+// at the true optimum of its cost.
+Eigen::Matrix3d calcInverseLeftJacobian(const Eigen::Vector3d& theta) {
+    const double angle = theta.norm();
+    Eigen::Matrix3d skew;
+    skew << 0, -theta.z(), theta.y(), theta.z(), 0, -theta.x(), -theta.y(), theta.x(), 0;
+    const double c = angle < 1e-6 ? 1.0 / 12 : (1 / (angle * angle) - (1 + std::cos(angle)) / (2 * angle * std::sin(angle)));
+    return Eigen::Matrix3d::Identity() - 0.5 * skew + c * skew * skew;
+}
+
+Eigen::Vector3d calcRotationVector(const Eigen::Matrix3d& R) {
+    const Eigen::AngleAxisd rotation(R);
+    return rotation.angle() * rotation.axis();
+}
 
 }  // namespace
 
@@ -97,50 +113,58 @@ InverseKinematicsSolver::InverseKinematicsSolver(const Model& model, std::vector
     c_.resize(3 * static_cast<Eigen::Index>(model.getLoops().size()));
     G_.resize(c_.size(), numFree_);
     markerErrors_.resize(static_cast<Eigen::Index>(markerTasks_.size()));
+    jointMotion_G_.resize(static_cast<std::size_t>(model.getNumLinks()));
+    curvature_.setZero(numFree_, numFree_);
     orientationErrors_.resize(static_cast<Eigen::Index>(orientationTasks_.size()));
 }
 
-// Adds d(u's effect)/du into `rows` at u's unknown: directly for a free speed, through the coupler's slope
-// for a dependent coordinate (q_dep = s f(q_ind)), nowhere for a locked one.
-void InverseKinematicsSolver::addSpeedColumn(int u, const Eigen::VectorXd& q, const Eigen::Ref<const Eigen::VectorXd>& column,
-                                             Eigen::Ref<Eigen::MatrixXd> rows) const {
+// Where a speed u's effect goes among the free unknowns, and by what factor: itself for a free speed, the
+// independent coordinate through the coupler's slope for a dependent one (q_dep = s f(q_ind)), nowhere
+// (-1) for a locked one or a virtual link's.
+std::pair<int, double> InverseKinematicsSolver::findFreeColumn(int u) const {
     const int free = freeColumn_[static_cast<std::size_t>(u)];
-    if (free >= 0) {
-        rows.col(free) += column;
-        return;
-    }
+    if (free >= 0) return {free, 1};
     const int k = couplerOfU_[static_cast<std::size_t>(u)];
-    if (k < 0) return;
+    if (k < 0) return {-1, 0};
     const CoordinateCoupler& coupler = model_.getCouplers()[static_cast<std::size_t>(k)];
     const int independent = freeColumn_[static_cast<std::size_t>(coupler.independentU)];
-    if (independent < 0) return;
-    rows.col(independent) += coupler.scaleFactor * coupler.function.calcDerivative(q[coupler.independentQ], 1) * column;
+    if (independent < 0) return {-1, 0};
+    return {independent, coupler.scaleFactor * coupler.function.calcDerivative(lastQ_[coupler.independentQ], 1)};
 }
 
-// scale x d(p_G)/du for a point p_G fixed on `link`: each joint from the link to the root moves it.
+void InverseKinematicsSolver::calcJointMotions() {
+    for (int i = 0; i < model_.getNumLinks(); ++i)
+        jointMotion_G_[static_cast<std::size_t>(i)] = calcJointMotion_G(model_.getJoint(i), data_, i, data_.p_GM[static_cast<std::size_t>(i)]);
+}
+
+// scale x d(p_G)/du for a point p_G fixed on `link`: each joint from the link to the root moves it, by its
+// twist about the joint centre shifted to the point.
 void InverseKinematicsSolver::addPointJacobian(int link, const Eigen::Vector3d& p_G, double scale,
                                                Eigen::Ref<Eigen::MatrixXd> rows) {
     for (int i = link; i != kGround; i = model_.getJoint(i).parent) {
         const Joint& joint = model_.getJoint(i);
-        const JointMotion H_G = calcJointMotion_G(joint, data_, i, p_G);
-        for (int k = 0; k < joint.nu; ++k)
-            addSpeedColumn(joint.uStart + k, lastQ_, scale * H_G.col(k).tail<3>(), rows);
+        const JointMotion& H_G = jointMotion_G_[static_cast<std::size_t>(i)];
+        const Eigen::Vector3d arm = p_G - data_.p_GM[static_cast<std::size_t>(i)];
+        for (int k = 0; k < joint.nu; ++k) {
+            const auto [col, factor] = findFreeColumn(joint.uStart + k);
+            if (col >= 0) rows.col(col) += (scale * factor) * (H_G.col(k).tail<3>() + H_G.col(k).head<3>().cross(arm));
+        }
     }
 }
 
 void InverseKinematicsSolver::addAngularJacobian(int link, const Eigen::Matrix3d& scale_G, Eigen::Ref<Eigen::MatrixXd> rows) {
     for (int i = link; i != kGround; i = model_.getJoint(i).parent) {
         const Joint& joint = model_.getJoint(i);
-        const JointMotion H_G = calcJointMotion_G(joint, data_, i, data_.p_GB[static_cast<std::size_t>(i)]);
-        for (int k = 0; k < joint.nu; ++k)
-            addSpeedColumn(joint.uStart + k, lastQ_, scale_G * H_G.col(k).head<3>(), rows);
+        const JointMotion& H_G = jointMotion_G_[static_cast<std::size_t>(i)];
+        for (int k = 0; k < joint.nu; ++k) {
+            const auto [col, factor] = findFreeColumn(joint.uStart + k);
+            if (col >= 0) rows.col(col) += factor * (scale_G * H_G.col(k).head<3>());
+        }
     }
 }
 
 // Rows sqrt(w) theta, theta the rotation vector of R_GF R_target^T (the error, in G), after the marker and
-// coordinate rows. d(theta)/dt = J_l(theta)^-1 w_GB with the left Jacobian of SO(3) (Barfoot, State
-// Estimation for Robotics, eq. 7.82): exact, so that a fit that cannot reach its targets still stops at the
-// true optimum of the cost.
+// coordinate rows; d(theta)/dt = J_l(theta)^-1 w_GB.
 void InverseKinematicsSolver::evaluateOrientations(const InverseKinematicsTargets& targets, bool withJacobian) {
     const Eigen::Index first = 3 * static_cast<Eigen::Index>(markerTasks_.size()) +
                                static_cast<Eigen::Index>(coordinateTasks_.size());
@@ -153,18 +177,11 @@ void InverseKinematicsSolver::evaluateOrientations(const InverseKinematicsTarget
             continue;
         }
         const std::size_t b = static_cast<std::size_t>(taskLink_[t]);
-        const Eigen::AngleAxisd error(data_.R_GB[b] * orientationTasks_[t].R_BF * R_target.transpose());
-        const Eigen::Vector3d theta = error.angle() * error.axis();
+        const Eigen::Vector3d theta = calcRotationVector(data_.R_GB[b] * orientationTasks_[t].R_BF * R_target.transpose());
         const double w = std::sqrt(orientationTasks_[t].weight);
         r_.segment<3>(row) = w * theta;
-        orientationErrors_[static_cast<Eigen::Index>(t)] = error.angle();
-        if (!withJacobian) continue;
-        const double angle = error.angle();
-        Eigen::Matrix3d skew;
-        skew << 0, -theta.z(), theta.y(), theta.z(), 0, -theta.x(), -theta.y(), theta.x(), 0;
-        const double c = angle < 1e-6 ? 1.0 / 12 : (1 / (angle * angle) - (1 + std::cos(angle)) / (2 * angle * std::sin(angle)));
-        const Eigen::Matrix3d inverseJacobian = Eigen::Matrix3d::Identity() - 0.5 * skew + c * skew * skew;
-        addAngularJacobian(static_cast<int>(b), w * inverseJacobian, A_.middleRows<3>(row));
+        orientationErrors_[static_cast<Eigen::Index>(t)] = theta.norm();
+        if (withJacobian) addAngularJacobian(static_cast<int>(b), w * calcInverseLeftJacobian(theta), A_.middleRows<3>(row));
     }
 }
 
@@ -183,39 +200,14 @@ void InverseKinematicsSolver::fillLoopGaps(Eigen::VectorXd& c, Eigen::MatrixXd* 
     }
 }
 
-// The Hessian of the Lagrangian 1/2 |r|^2 + lambda^T c by central differences of its gradient A^T r + G^T
-// lambda, over the free unknowns: A^T A plus the residuals' and the loops' curvature, which Gauss-Newton
-// leaves out and without which a fit that cannot reach its markers (or pulls against a loop) converges
-// only linearly. Restores the evaluation at q.
-void InverseKinematicsSolver::calcSecondOrderHessian(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q) {
-    const double h = 1e-6;
-    const Eigen::Index n = numFree_;
-    hessian_.setZero(n, n);
-    // An unknown that moves no marker, target or loop (a finger no marker sees) has no curvature either.
-    const Eigen::MatrixXd A = A_, G = G_;
-    for (int u = 0; u < model_.getNumU(); ++u) {
-        const int col = freeColumn_[static_cast<std::size_t>(u)];
-        if (col < 0 || (A.col(col).isZero(0) && G.col(col).isZero(0))) continue;
-        const Eigen::VectorXd step = Eigen::VectorXd::Unit(model_.getNumU(), u) * h;
-        Eigen::VectorXd plus = integrateCoordinates(model_, q, step, 1.0), minus = integrateCoordinates(model_, q, -step, 1.0);
-        applyCoordinateCouplers(model_, plus);
-        applyCoordinateCouplers(model_, minus);
-        evaluate(targets, plus, true);
-        const Eigen::VectorXd gradientPlus = A_.transpose() * r_ + G_.transpose() * multipliers_;
-        evaluate(targets, minus, true);
-        hessian_.col(col) = (gradientPlus - (A_.transpose() * r_ + G_.transpose() * multipliers_)) / (2 * h);
-    }
-    hessian_ = 0.5 * (hessian_ + hessian_.transpose()).eval();
-    evaluate(targets, q, true);
-}
-
-double InverseKinematicsSolver::evaluate(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q,
-                                         bool withJacobian) {
+InverseKinematicsSolver::Score InverseKinematicsSolver::evaluate(const InverseKinematicsTargets& targets,
+                                                                const Eigen::VectorXd& q, bool withJacobian) {
     calcPositionKinematics(model_, data_, q);
     lastQ_ = q;
     if (withJacobian) {
         A_.setZero();
         G_.setZero();
+        calcJointMotions();
     }
     markersSeen_ = 0;
     for (std::size_t t = 0; t < markerTasks_.size(); ++t) {
@@ -243,12 +235,18 @@ double InverseKinematicsSolver::evaluate(const InverseKinematicsTargets& targets
         if (!withJacobian) continue;
         const Coordinate& c = model_.getCoordinates()[static_cast<std::size_t>(qi)];
         const Joint& joint = model_.getJoint(c.joint);
-        addSpeedColumn(joint.uStart + (qi - joint.qStart), q, Eigen::VectorXd::Constant(1, w), A_.middleRows(row, 1));
+        const auto [col, factor] = findFreeColumn(joint.uStart + (qi - joint.qStart));
+        if (col >= 0) A_(row, col) += w * factor;
     }
     evaluateOrientations(targets, withJacobian);
     fillLoopGaps(c_, withJacobian ? &G_ : nullptr);
-    return 0.5 * r_.squaredNorm() + (kLoopMerit + 2 * multipliers_.lpNorm<Eigen::Infinity>()) * c_.norm();
+    const double cost = 0.5 * r_.squaredNorm();
+    return {cost, cost + (kLoopMerit + 2 * multipliers_.lpNorm<Eigen::Infinity>()) * c_.norm(),
+            c_.size() == 0 || c_.lpNorm<Eigen::Infinity>() <= kClosedGap};
 }
+
+// The Lagrangian's gradient over the free unknowns at the last evaluation.
+Eigen::VectorXd InverseKinematicsSolver::calcLagrangianGradient() const { return A_.transpose() * r_ + G_.transpose() * multipliers_; }
 
 // The linearised step leaves the loops open by its square; closing them again before the step is judged
 // keeps the merit from refusing good steps for that gap (the Maratos effect) and every accepted pose
@@ -259,6 +257,7 @@ void InverseKinematicsSolver::closeLoops(Eigen::VectorXd& q) {
         // The gaps alone: the tasks are evaluated once the pose is closed.
         calcPositionKinematics(model_, data_, q);
         lastQ_ = q;
+        calcJointMotions();
         fillLoopGaps(c_, &G_);
         if (c_.lpNorm<Eigen::Infinity>() <= kClosedGap) return;
         q = integrateCoordinates(model_, q, toSpeeds(G_.completeOrthogonalDecomposition().solve(-c_)), 1.0);
@@ -266,15 +265,14 @@ void InverseKinematicsSolver::closeLoops(Eigen::VectorXd& q) {
     }
 }
 
-// min 1/2 |r + A d|^2 + 1/2 damping |d|^2 subject to c + G d = 0, with the entries `fixed` given by
-// fixedStep: the KKT system [H G^T; G 0] [d; lambda] = [-A^T r; -c] by its Schur complement on the loops.
-// H (damped, so positive definite) by Cholesky, and the loops' small G H^-1 G^T by a complete orthogonal
-// decomposition, since loops may repeat one another's constraints (rank-deficient G).
+// min g^T d + 1/2 d^T (H + damping) d subject to c + G d = 0, with the entries `fixed` given by fixedStep: the
+// KKT system [H G^T; G 0] [d; lambda] = [-g; -c] by its Schur complement on the loops. H by Cholesky, damped
+// further until positive definite (with the residuals' curvature it need not be), and the loops' small G H^-1 G^T by a
+// complete orthogonal decomposition, since loops may repeat one another's constraints (rank-deficient G).
 Eigen::VectorXd InverseKinematicsSolver::solveKkt(double damping, const std::vector<bool>& fixed,
                                                   const Eigen::VectorXd& fixedStep) {
     const Eigen::Index n = numFree_;
     H_ = stepHessian_;
-    H_.diagonal().array() += damping;
     Eigen::VectorXd b = -(A_.transpose() * r_), e = -c_;
     Eigen::MatrixXd G = G_;
     for (Eigen::Index j = 0; j < n; ++j) {
@@ -283,22 +281,13 @@ Eigen::VectorXd InverseKinematicsSolver::solveKkt(double damping, const std::vec
         e -= G.col(j) * fixedStep[j];
         H_.row(j).setZero();
         H_.col(j).setZero();
-        H_(j, j) = 1;
         b[j] = fixedStep[j];
         G.col(j).setZero();
     }
-    const Eigen::LLT<Eigen::MatrixXd> cholesky(H_);
-    if (cholesky.info() != Eigen::Success) {
-        // The full Hessian of a fit pulling against its loops need not be positive definite.
-        Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + G.rows(), n + G.rows());
-        K.topLeftCorner(n, n) = H_;
-        K.topRightCorner(n, G.rows()) = G.transpose();
-        K.bottomLeftCorner(G.rows(), n) = G;
-        Eigen::VectorXd rhs(n + G.rows());
-        rhs << b, e;
-        const Eigen::VectorXd solution = K.completeOrthogonalDecomposition().solve(rhs);
-        multipliers_ = solution.tail(G.rows());
-        return solution.head(n);
+    Eigen::LLT<Eigen::MatrixXd> cholesky;
+    for (double shift = damping;; shift *= 10) {
+        for (Eigen::Index j = 0; j < n; ++j) H_(j, j) = fixed[static_cast<std::size_t>(j)] ? 1 : stepHessian_(j, j) + shift;
+        if (cholesky.compute(H_).info() == Eigen::Success) break;
     }
     const Eigen::VectorXd free = cholesky.solve(b);
     if (G.rows() == 0) return free;
@@ -314,14 +303,19 @@ Eigen::VectorXd InverseKinematicsSolver::solveStep(double damping, const Eigen::
     std::vector<bool> fixed(static_cast<std::size_t>(n), false);
     Eigen::VectorXd fixedStep = Eigen::VectorXd::Zero(n);
     Eigen::VectorXd delta(n);
-    if (secondOrder_) {
-        stepHessian_ = hessian_;
-    } else {
-        // A^T A by its lower half, mirrored: half the products of the full one.
+    // The curvature learnt at another pose, as its residuals and multipliers are to these: it vanishes
+    // with them (quadratic convergence onto a capture the model can reach), and where a target or loop
+    // no longer observes an unknown (a marker unseen this frame) it no longer curves.
+    const double residuals = std::sqrt(r_.squaredNorm() + multipliers_.squaredNorm());
+    if (useCurvature_ && curvatureResiduals_ > 0)
+        stepHessian_ = std::min(1.0, residuals / curvatureResiduals_) * curvature_;
+    else
         stepHessian_.setZero(n, n);
-        stepHessian_.selfadjointView<Eigen::Lower>().rankUpdate(A_.transpose());
-        stepHessian_.triangularView<Eigen::StrictlyUpper>() = stepHessian_.transpose();
-    }
+    for (Eigen::Index j = 0; j < n; ++j)
+        if (A_.col(j).isZero(0) && G_.col(j).isZero(0)) stepHessian_.row(j).setZero(), stepHessian_.col(j).setZero();
+    // A^T A by its lower half, mirrored: half the products of the full one.
+    stepHessian_.selfadjointView<Eigen::Lower>().rankUpdate(A_.transpose());
+    stepHessian_.triangularView<Eigen::StrictlyUpper>() = stepHessian_.transpose();
     for (int pass = 0; pass < kActiveSetPasses; ++pass) {
         delta = solveKkt(damping, fixed, fixedStep);
         bool changed = false;
@@ -348,6 +342,16 @@ Eigen::VectorXd InverseKinematicsSolver::toSpeeds(const Eigen::VectorXd& delta) 
         if (col >= 0) du[u] = delta[col];
     }
     return du;
+}
+
+double InverseKinematicsSolver::calcCostAtAccuracy(const InverseKinematicsTargets& targets) const {
+    double weights = 0;
+    for (std::size_t t = 0; t < markerTasks_.size(); ++t)
+        if (targets.markers.col(static_cast<Eigen::Index>(t)).allFinite()) weights += markerTasks_[t].weight;
+    for (const CoordinateTask& task : coordinateTasks_) weights += task.weight;
+    for (std::size_t t = 0; t < orientationTasks_.size(); ++t)
+        if (targets.orientations[t].allFinite()) weights += orientationTasks_[t].weight;
+    return 0.5 * weights * options_.accuracy * options_.accuracy;
 }
 
 bool InverseKinematicsSolver::isSmallStep(const Eigen::VectorXd& delta) const {
@@ -390,43 +394,58 @@ InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTa
     InverseKinematicsReport report;
     applyCoordinateCouplers(model_, q);
     multipliers_.setZero(c_.size());
-    secondOrder_ = false;
-    double merit = evaluate(targets, q, true);
+    useCurvature_ = true;
+    Score score = evaluate(targets, q, true);
     double damping = 1e-6 * (1 + A_.colwise().squaredNorm().maxCoeff());
     const double dampingFloor = 1e-12 * (1 + damping);
+    bool lastTaken = false;
+    const double reachedCost = calcCostAtAccuracy(targets);
     for (report.iterations = 0; report.iterations < options_.maxIterations;) {
         const Eigen::VectorXd delta = solveStep(damping, q);
         const Eigen::VectorXd du = toSpeeds(delta);
         ++report.iterations;
         // Converged when the step moves no task's target by more than the accuracy (m, or rad for a
         // coordinate task): coordinates that no task observes (a spine between two tracked vertebrae) may
-        // drift along their flat directions without ending the solve late or never.
+        // drift along their flat directions without ending the solve late or never. Or, for a fit that
+        // cannot reach its targets (its cost above what every target off by the accuracy would cost), when
+        // an undamped-enough step (the last one taken too) lowers the merit by no more than that fraction of
+        // it: Simbody's Assembler's accuracy, which OpenSim's IK passes on, "the goal within that fraction
+        // of its minimum".
         const bool small = isSmallStep(delta);
         Eigen::VectorXd trial = integrateCoordinates(model_, q, du, 1.0);
         applyCoordinateCouplers(model_, trial);
         closeLoops(trial);
         // With the Jacobian: most trials are taken, and the next step needs it there.
-        const double trialMerit = evaluate(targets, trial, true);
-        if (trialMerit <= merit) {
+        const Score trialScore = evaluate(targets, trial, true);
+        // Both poses closed to roundoff: the gaps' part of the merit is that roundoff alone, which would
+        // hide the last digits of an exact fit's cost (a segment frame weighted 4e-4 m^2/rad^2 off by 1e-7
+        // rad costs 2e-18).
+        const bool closed = score.closed && trialScore.closed;
+        const double before = closed ? score.cost : score.merit, after = closed ? trialScore.cost : trialScore.merit;
+        if (after <= before) {
+            const bool flat = lastTaken && after > reachedCost && before - after <= options_.accuracy * after;
+            // Gauss-Newton converging only linearly (a step that took off less than half the merit): a fit
+            // that cannot reach its targets or pulls against a loop.
+            const bool linear = after > 0.5 * before;
             q = trial;
-            merit = trialMerit;
-            if (secondOrder_) calcSecondOrderHessian(targets, q);
+            score = trialScore;
             damping = std::max(dampingFloor, damping / 3);
-            if (small && c_.lpNorm<Eigen::Infinity>() <= options_.constraintTolerance) {
+            lastTaken = true;
+            // The curvature from the frame that last needed it serves the next frames, whose residuals
+            // are about the same: refreshed only where the one in hand no longer gives a fast solve.
+            if (linear && report.iterations % kCurvatureRefreshIterations == 0) refreshCurvature(targets, q);
+            if ((small || flat) && c_.lpNorm<Eigen::Infinity>() <= options_.constraintTolerance) {
                 report.converged = true;
                 break;
             }
         } else {
             evaluate(targets, q, true);
             damping *= 4;
-            // Gauss-Newton has had its iterations and still refuses steps: it is converging only linearly
-            // (a fit that cannot reach its targets): from here on, the full Lagrangian Hessian. Not at the
-            // first refusal, which far from the fit says only that the damping was too small.
-            if (!secondOrder_ && report.iterations >= kGaussNewtonIterations) {
-                secondOrder_ = true;
-                calcSecondOrderHessian(targets, q);
-            }
-            // The loops' curvature, which Gauss-Newton leaves out, can refuse steps far below the accuracy.
+            lastTaken = false;
+            // A curvature that proposes a refused step is no longer the fit's (learnt at another frame's
+            // pose, or lost in the roundoff of an exact fit): Gauss-Newton's steps until it is refreshed.
+            useCurvature_ = false;
+            // The loops' curvature, which the linearised gaps leave out, can refuse steps far below the accuracy.
             if (small) {
                 report.converged = c_.lpNorm<Eigen::Infinity>() <= options_.constraintTolerance;
                 break;
@@ -435,6 +454,34 @@ InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTa
     }
     fillReport(report);
     return report;
+}
+
+// The Lagrangian's curvature beyond Gauss-Newton's A^T A, the residuals' and the loops' sum r_i Hess(r_i) +
+// lambda^T Hess(c), by forward differences of its gradient over the free unknowns that a task or loop
+// observes (one Jacobian evaluation each; the others have none).
+// Without it a fit that cannot reach its targets (residuals of centimetres, segment frames a few tenths of
+// a radian off, as in any real capture) or pulls against a loop converges only linearly. Restores the
+// evaluation at q.
+void InverseKinematicsSolver::refreshCurvature(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q) {
+    const double h = 1e-7;
+    const Eigen::MatrixXd A = A_, G = G_;
+    const Eigen::VectorXd gradient = calcLagrangianGradient();
+    Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(numFree_, numFree_);
+    for (int u = 0; u < model_.getNumU(); ++u) {
+        const int col = freeColumn_[static_cast<std::size_t>(u)];
+        if (col < 0 || (A.col(col).isZero(0) && G.col(col).isZero(0))) continue;
+        Eigen::VectorXd plus = integrateCoordinates(model_, q, Eigen::VectorXd::Unit(model_.getNumU(), u) * h, 1.0);
+        applyCoordinateCouplers(model_, plus);
+        evaluate(targets, plus, true);
+        hessian.col(col) = (calcLagrangianGradient() - gradient) / h;
+    }
+    // An unobserved unknown's column is zero in both, and so in the difference.
+    curvature_ = 0.5 * (hessian + hessian.transpose());
+    curvature_.selfadjointView<Eigen::Lower>().rankUpdate(A.transpose(), -1);
+    curvature_.triangularView<Eigen::StrictlyUpper>() = curvature_.transpose();
+    evaluate(targets, q, true);
+    curvatureResiduals_ = std::sqrt(r_.squaredNorm() + multipliers_.squaredNorm());
+    useCurvature_ = true;
 }
 
 // The fit errors at the pose of the last evaluation.

@@ -83,18 +83,26 @@ public:
     const std::vector<OrientationTask>& getOrientationTasks() const { return orientationTasks_; }
 
 private:
-    // Fills r_ and c_ (and A_, G_ with the Jacobian) at q; returns the merit: the tasks' cost plus the
-    // loops' gaps, weighted to come first.
-    double evaluate(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q, bool withJacobian);
+    struct Score {
+        double cost;   // the tasks'
+        double merit;  // the cost plus the loops' gaps, weighted to come first
+        bool closed;   // the loops closed to roundoff
+    };
+    // Fills r_ and c_ (and A_, G_ with the Jacobian) at q.
+    Score evaluate(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q, bool withJacobian);
+    void calcJointMotions();
     void addPointJacobian(int link, const Eigen::Vector3d& p_G, double scale, Eigen::Ref<Eigen::MatrixXd> rows);
     // scale_G x (the link's angular velocity in G)/du.
     void addAngularJacobian(int link, const Eigen::Matrix3d& scale_G, Eigen::Ref<Eigen::MatrixXd> rows);
     void evaluateOrientations(const InverseKinematicsTargets& targets, bool withJacobian);
-    void addSpeedColumn(int u, const Eigen::VectorXd& q, const Eigen::Ref<const Eigen::VectorXd>& column,
-                        Eigen::Ref<Eigen::MatrixXd> rows) const;
+    Eigen::VectorXd calcLagrangianGradient() const;
+    std::pair<int, double> findFreeColumn(int u) const;
     void fillLoopGaps(Eigen::VectorXd& c, Eigen::MatrixXd* G);
-    void calcSecondOrderHessian(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q);
+    void refreshCurvature(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q);
     bool isSmallStep(const Eigen::VectorXd& delta) const;
+    // 1/2 sum of the weights of the tasks seen x accuracy^2: the cost of a fit that misses every target by
+    // the accuracy.
+    double calcCostAtAccuracy(const InverseKinematicsTargets& targets) const;
     void checkFrame(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q) const;
     void fillReport(InverseKinematicsReport& report) const;
     // A step in the free unknowns as speeds (nu): 0 for locked, coupled and virtual-link speeds.
@@ -126,9 +134,11 @@ private:
     Eigen::VectorXd r_, c_;
     Eigen::MatrixXd A_, G_;
     Eigen::VectorXd multipliers_;    // the loops' Lagrange multipliers from the last step
-    bool secondOrder_ = false;        // this solve has left Gauss-Newton for the full Hessian
-    Eigen::MatrixXd hessian_;         // of the Lagrangian at the current pose, when secondOrder_
-    Eigen::MatrixXd stepHessian_;     // the step's: A^T A, or hessian_ when secondOrder_ (free x free)
+    std::vector<JointMotion> jointMotion_G_;  // per link at the last evaluation, about its joint centre
+    Eigen::MatrixXd curvature_;       // the Lagrangian's curvature beyond A^T A where last refreshed
+    double curvatureResiduals_ = 0;   // |[r; multipliers]| there
+    bool useCurvature_ = true;        // in this solve's steps
+    Eigen::MatrixXd stepHessian_;     // the step's: A^T A + curvature_ (free x free)
     Eigen::MatrixXd H_;               // stepHessian_ damped, with the active set's rows fixed
     Eigen::VectorXd lastQ_;  // q of the last evaluation, for the couplers' slopes
     Eigen::VectorXd markerErrors_;
