@@ -8,7 +8,7 @@
 // from itself (makeModelBvh: 240 frames at 120 Hz of every ball joint swinging up to 0.3 rad at 1 Hz, the
 // shipped map's 18 joint centres and orientations), each frame warm-started from the last, as `sinew ik
 // MODEL CAPTURE.bvh` runs: always registered. InverseKinematics/whole_body/kick_warm: the same on CMU's kick
-// 11_01.bvh (scaled to the subject), when ../shared is present.
+// 11_01.bvh (prepareBvhFit: the model and the map scaled to the subject), when ../shared is present.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -22,12 +22,11 @@
 #include "sinew/io/model_loading.hpp"
 #include "sinew/io/tool_setup.hpp"
 #include "sinew/io/trc_file.hpp"
-#include "sinew/tools/bvh_segment_scales.hpp"
+#include "sinew/tools/bvh_inverse_kinematics.hpp"
 #include "sinew/tools/bvh_targets.hpp"
 #include "sinew/tools/inverse_kinematics.hpp"
 #include "sinew/tools/inverse_kinematics_tool.hpp"
 #include "sinew/tools/model_bvh.hpp"
-#include "sinew/tools/model_scaling.hpp"
 
 namespace sinew {
 namespace {
@@ -90,8 +89,7 @@ std::vector<Eigen::VectorXd> makeSwing(const Model& model, int frames, double fr
     return q;
 }
 
-void timeBvhFrames(benchmark::State& state, const Model& model, const BvhMotion& motion) {
-    const BvhTargets targets = makeBvhTargets(motion, readBvhMap((kWholeBody / "bvh_map.yaml").string()), model);
+void timeBvhFrames(benchmark::State& state, const Model& model, const BvhTargets& targets) {
     std::vector<InverseKinematicsTargets> frames;
     for (std::size_t f = 0; f < targets.capture.positions.size(); ++f)
         frames.push_back({targets.capture.positions[f], Eigen::VectorXd(),
@@ -126,7 +124,7 @@ const bool kWholeBodyRegistered = [] {
     benchmark::RegisterBenchmark("InverseKinematics/whole_body/bvh_warm", [](benchmark::State& state) {
         const Model model = loadModel((kWholeBody / "whole_body.yaml").string(), {});
         const BvhMap map = readBvhMap((kWholeBody / "bvh_map.yaml").string());
-        timeBvhFrames(state, model, makeModelBvh(model, map, makeSwing(model, 240, 1.0 / 120), 1.0 / 120));
+        timeBvhFrames(state, model, makeBvhTargets(makeModelBvh(model, map, makeSwing(model, 240, 1.0 / 120), 1.0 / 120), map, model));
     })->Unit(benchmark::kMillisecond);
     if (!std::filesystem::exists(kKick)) {
         std::cerr << "InverseKinematics/whole_body/kick_warm skipped: " << kKick << " is absent\n";
@@ -135,9 +133,9 @@ const bool kWholeBodyRegistered = [] {
     benchmark::RegisterBenchmark("InverseKinematics/whole_body/kick_warm", [](benchmark::State& state) {
         const Model model = loadModel((kWholeBody / "whole_body.yaml").string(), {});
         const BvhMap map = readBvhMap((kWholeBody / "bvh_map.yaml").string());
-        const BvhMotion kick = readBvhFile(kKick.string());
-        const BvhSegmentScales scales = estimateBvhSegmentScales(kick, map, model, inferBvhLengthUnit(kick));
-        timeBvhFrames(state, scaleModel(model, scales.linkFactors), kick);
+        // Scaled, with the map's points scaled with it, as `sinew ik` fits it.
+        const BvhFit fit = prepareBvhFit(model, readBvhFile(kKick.string()), map, true);
+        timeBvhFrames(state, fit.model, fit.targets);
     })->Unit(benchmark::kMillisecond);
     return true;
 }();

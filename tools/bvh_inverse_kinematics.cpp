@@ -1,6 +1,5 @@
 #include "sinew/tools/bvh_inverse_kinematics.hpp"
 
-#include "sinew/tools/bvh_targets.hpp"
 #include "sinew/tools/model_scaling.hpp"
 
 namespace sinew {
@@ -12,20 +11,26 @@ Model scaleIf(const Model& model, const std::optional<BvhSegmentScales>& scales)
 
 }  // namespace
 
+BvhFit prepareBvhFit(const Model& model, const BvhMotion& motion, const BvhMap& map, bool scale) {
+    const double unit = map.unit > 0 ? map.unit : inferBvhLengthUnit(motion);
+    std::optional<BvhSegmentScales> scales;
+    if (scale) scales = estimateBvhSegmentScales(motion, map, model, unit);
+    BvhFit fit{scales, scaleIf(model, scales), unit, {}};
+    fit.targets = makeBvhTargets(motion, scales ? scaleBvhMapPoints(map, model, scales->linkFactors) : map, fit.model);
+    return fit;
+}
+
 BvhInverseKinematics runBvhInverseKinematics(const Model& model, const BvhMotion& motion, const BvhMap& map, bool scale,
                                              InverseKinematicsRequest request,
                                              const std::function<void(const std::string&)>& notes,
                                              const std::function<void(int frame, int frames)>& onFrame) {
-    const double unit = map.unit > 0 ? map.unit : inferBvhLengthUnit(motion);
-    std::optional<BvhSegmentScales> scales;
-    if (scale) scales = estimateBvhSegmentScales(motion, map, model, unit);
-    BvhInverseKinematics fit{scales, scaleIf(model, scales), unit, {}};
-    BvhTargets targets = makeBvhTargets(motion, scales ? scaleBvhMapPoints(map, model, scales->linkFactors) : map, fit.model);
+    BvhFit prepared = prepareBvhFit(model, motion, map, scale);
+    BvhInverseKinematics fit{prepared.scales, std::move(prepared.model), prepared.unit, {}};
     request.markerTasks.clear();
     request.coordinateTasks.clear();
-    request.orientationTasks = std::move(targets.orientationTasks);
-    request.orientations = std::move(targets.orientations);
-    fit.result = runInverseKinematics(fit.model, targets.markers, targets.capture, request, notes, onFrame);
+    request.orientationTasks = std::move(prepared.targets.orientationTasks);
+    request.orientations = std::move(prepared.targets.orientations);
+    fit.result = runInverseKinematics(fit.model, prepared.targets.markers, prepared.targets.capture, request, notes, onFrame);
     return fit;
 }
 

@@ -10,6 +10,7 @@
 #include "sinew/io/bvh_file.hpp"
 #include "sinew/io/bvh_map.hpp"
 #include "sinew/tools/bvh_segment_scales.hpp"
+#include "sinew/tools/bvh_targets.hpp"
 #include "sinew/tools/inverse_kinematics_tool.hpp"
 
 namespace sinew {
@@ -20,6 +21,16 @@ struct BvhInverseKinematics {
     double unit = 0;                         // m per BVH unit
     InverseKinematicsResult result;
 };
+
+// The fit's model and targets as runBvhInverseKinematics poses them: the model scaled to the skeleton (when
+// `scale`), the map's points scaled with it, the mapped joints' centres and frames per BVH frame.
+struct BvhFit {
+    std::optional<BvhSegmentScales> scales;
+    Model model;
+    double unit = 0;
+    BvhTargets targets;
+};
+BvhFit prepareBvhFit(const Model& model, const BvhMotion& motion, const BvhMap& map, bool scale);
 
 // request: its time range and accuracy are used; its tasks are the BVH's. Throws what the steps throw.
 BvhInverseKinematics runBvhInverseKinematics(const Model& model, const BvhMotion& motion, const BvhMap& map, bool scale,
