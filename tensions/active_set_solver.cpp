@@ -42,6 +42,14 @@ double calcEqualityResidual(const DistributionProblem& problem, const Eigen::Vec
     return largest;
 }
 
+// ½ Σ weight (x - center)² + ½ |tau - A x|² over the tolerance rows, from result.x and result.residual.
+double calcQpObjective(const DistributionProblem& problem, const DistributionResult& result, const Eigen::VectorXd& center) {
+    double objective = 0.5 * problem.weight.dot((result.x.head(problem.getNumBounded()) - center).cwiseAbs2());
+    for (int i = 0; i < problem.getNumRows(); ++i)
+        if (!problem.isEquality[static_cast<std::size_t>(i)]) objective += 0.5 * result.residual[i] * result.residual[i];
+    return objective;
+}
+
 }  // namespace
 
 ActiveSetSolver::ActiveSetSolver(ActiveSetOptions options) : options_(options) {}
@@ -138,9 +146,10 @@ void ActiveSetSolver::fromReduced(const Eigen::VectorXd& reduced, Eigen::VectorX
     for (Eigen::Index k = support; k < rowVector.size(); ++k) rowVector[rowOrder_[static_cast<std::size_t>(k)]] = reduced[k - rank_];
 }
 
-// x(y) = clamp(center_j + a_j^T y / weight_j) and the dual gradient tau - Sigma y - A_bounded x (docs/tensions.md, eq. QP-2).
+// x(y) = clamp(center_j + a_j^T y / weight_j) and the dual gradient tau + shift - Sigma y - A_bounded x
+// (docs/tensions.md, eq. QP-2).
 void ActiveSetSolver::evaluate(const DistributionProblem& problem) {
-    gradient_ = problem.target - sigma_.cwiseProduct(y_);
+    gradient_ = problem.target + equalityShift_ - sigma_.cwiseProduct(y_);
     for (int j = 0; j < problem.getNumBounded(); ++j) {
         double aty = 0;
         for (SparseColumn it(problem.A, j); it; ++it) aty += it.value() * y_[it.row()];
@@ -325,33 +334,52 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
     const double tauScale = problem.target.size() ? problem.target.cwiseAbs().maxCoeff() : 0.0;
     bool converged = false, factorValid = false, fullStep = false;
     int iterations = 0;
-    for (;;) {
-        evaluate(problem);
-        const bool exactStep = fullStep && regime_ == stepped_;
-        toReduced(gradient_, reducedGradient_);
-        // Size of the generalized forces: tau and A x (= tau - gradient - Sigma y).
-        rowWork_ = problem.target - gradient_ - sigma_.cwiseProduct(y_);
-        const double scale = std::max(tauScale, rowWork_.cwiseAbs().maxCoeff());
-        const double gradientNorm = reducedGradient_.size() ? reducedGradient_.cwiseAbs().maxCoeff() : 0.0;
-        if (!std::isfinite(gradientNorm)) break;
-        if (gradientNorm <= options_.tolerance * scale || (exactStep && gradientNorm <= options_.roundoffTolerance * scale)) {
-            converged = true;
-            break;
+    equalityShift_.setZero(problem.getNumRows());
+    // The regulariser leaves each equality row off by sigma y (tau - A x = Sigma y - shift at the dual's
+    // optimum), a milli-newton on a virtual link that a frame pulls hard against (multipliers of 1e3-1e9
+    // N on the kick). The method of multipliers: the rows' targets shifted by sigma y and the Newton steps
+    // resumed, warm, in the same regime and with the same factor; each pass leaves them off by sigma times
+    // the change of their multipliers.
+    for (int pass = 0;; ++pass) {
+        for (;;) {
+            evaluate(problem);
+            const bool exactStep = fullStep && regime_ == stepped_;
+            toReduced(gradient_, reducedGradient_);
+            // Size of the generalized forces: tau and A x (= tau - gradient - Sigma y).
+            rowWork_ = problem.target - gradient_ - sigma_.cwiseProduct(y_);
+            const double scale = std::max(tauScale, rowWork_.cwiseAbs().maxCoeff());
+            const double gradientNorm = reducedGradient_.size() ? reducedGradient_.cwiseAbs().maxCoeff() : 0.0;
+            if (!std::isfinite(gradientNorm)) break;
+            if (gradientNorm <= options_.tolerance * scale || (exactStep && gradientNorm <= options_.roundoffTolerance * scale)) {
+                converged = true;
+                break;
+            }
+            if (iterations >= maxIterations) break;
+            if (!factorValid || !updateFactor(problem))
+                if (!factorize(problem)) break;
+            factorValid = true;
+            reducedDirection_ = reducedGradient_;
+            L_.triangularView<Eigen::Lower>().solveInPlace(reducedDirection_);
+            L_.triangularView<Eigen::Lower>().adjoint().solveInPlace(reducedDirection_);
+            fromReduced(reducedDirection_, direction_);
+            stepped_ = regime_;
+            const double step = searchLine(problem);
+            fullStep = std::abs(step - 1) <= 1e-3;
+            if (!std::isfinite(step)) break;
+            y_ += step * direction_;
+            ++iterations;
         }
-        if (iterations >= maxIterations) break;
-        if (!factorValid || !updateFactor(problem))
-            if (!factorize(problem)) break;
-        factorValid = true;
-        reducedDirection_ = reducedGradient_;
-        L_.triangularView<Eigen::Lower>().solveInPlace(reducedDirection_);
-        L_.triangularView<Eigen::Lower>().adjoint().solveInPlace(reducedDirection_);
-        fromReduced(reducedDirection_, direction_);
-        stepped_ = regime_;
-        const double step = searchLine(problem);
-        fullStep = std::abs(step - 1) <= 1e-3;
-        if (!std::isfinite(step)) break;
-        y_ += step * direction_;
-        ++iterations;
+        if (!converged || pass == kEqualityPasses) break;
+        double offset = 0, size = tauScale;
+        for (int i = 0; i < problem.getNumRows(); ++i) {
+            if (!problem.isEquality[static_cast<std::size_t>(i)]) continue;
+            offset = std::max(offset, std::abs(sigma_[i] * y_[i] - equalityShift_[i]));
+            size = std::max(size, std::abs(rowWork_[i]));
+        }
+        if (offset <= kEqualityRoundoff * std::max(1.0, size)) break;
+        for (int i = 0; i < problem.getNumRows(); ++i)
+            if (problem.isEquality[static_cast<std::size_t>(i)]) equalityShift_[i] = sigma_[i] * y_[i];
+        converged = fullStep = false;
     }
     if (!y_.allFinite()) {  // numerical breakdown: report the bounds-feasible point of y = 0, never NaN
         y_.setZero();
@@ -373,11 +401,9 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
     result.iterations = iterations;
     result.usedIpopt = false;
     calcResultSummary(problem, result);
-    result.objective = 0.5 * problem.weight.dot((x_ - center_).cwiseAbs2());
+    result.objective = calcQpObjective(problem, result, center_);
     const double equalityResidual = calcEqualityResidual(problem, result.residual);
     result.reserve.setZero(problem.getNumRows());
-    for (int i = 0; i < problem.getNumRows(); ++i)
-        if (!problem.isEquality[static_cast<std::size_t>(i)]) result.objective += 0.5 * result.residual[i] * result.residual[i];
     if (!converged) {
         result.status = DistributionStatus::Failed;
     } else if (equalityResidual > options_.infeasibilityTolerance) {

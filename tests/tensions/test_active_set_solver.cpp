@@ -193,6 +193,39 @@ TEST(ActiveSetSolver, ProximalStepsReachTheLeastSquaresOfIpoptAndNoMoreErrorThan
     EXPECT_GE(regulariserVisible, 12);
 }
 
+// Two wires through a massless node must balance (an equality row, as a virtual link's) while the tolerance
+// rows pull one to 2000 N and the other to 0: the node's multiplier is about 1000 N, which the dual's
+// equality regulariser (1e-12 of the mean a^2 / w) turns into a 1 mN imbalance unless the answer is moved
+// onto the row. Exact answers: regularised, f = 2000 / (2 + 2 w); least squares, 1000.
+TEST(ActiveSetSolver, EqualityRowsHoldExactlyAgainstAHardPull) {
+    DistributionProblem p;
+    std::vector<Eigen::Triplet<double>> entries = {{0, 0, 1}, {0, 1, -1}, {1, 0, 1}, {2, 1, 1}};
+    p.A.resize(3, 2);
+    p.A.setFromTriplets(entries.begin(), entries.end());
+    p.A.makeCompressed();
+    p.lower = Eigen::VectorXd::Zero(2);
+    p.upper = Eigen::VectorXd::Constant(2, 1e4);
+    p.cost = Eigen::VectorXd::Ones(2);
+    const double w = 1e-6;  // the wire problem's regulariser times the mean |a_j|^2 (1)
+    p.weight = Eigen::VectorXd::Constant(2, w);
+    p.target = Eigen::Vector3d(0, 2000, 0);
+    p.tolerance = Eigen::Vector3d(0, 1e-3, 1e-3);
+    p.isEquality = {true, false, false};
+    for (const bool leastSquares : {false, true}) {
+        ActiveSetSolver solver(leastSquares ? ActiveSetOptions() : regularisedOnly());
+        DistributionResult result;
+        solver.solve(p, result);
+        ASSERT_EQ(result.status, DistributionStatus::Optimal);
+        expectWithinBounds(p, result.x, leastSquares ? "least squares" : "regularised");
+        EXPECT_LE(std::abs(result.residual[0]), 1e-9) << "the node's imbalance, N";
+        EXPECT_NEAR(result.residual[0], p.target[0] - (p.A * result.x)[0], 1e-12);
+        const double exact = leastSquares ? 1000 : 2000 / (2 + 2 * w);
+        EXPECT_NEAR(result.x[0], exact, 1e-6 * exact);
+        EXPECT_NEAR(result.x[1], exact, 1e-6 * exact);
+        EXPECT_NEAR(result.torqueError, 0.5 * (p.target - p.A * result.x).squaredNorm(), 1e-9);
+    }
+}
+
 TEST(ActiveSetSolver, UnreachableEqualityRowIsInfeasibleWithItsReserve) {
     test::RandomProblemOptions o;
     o.unreachableRows = 1;
