@@ -339,8 +339,11 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
     // optimum), a milli-newton on a virtual link that a frame pulls hard against (multipliers of 1e3-1e9
     // N on the kick). The method of multipliers: the rows' targets shifted by sigma y and the Newton steps
     // resumed, warm, in the same regime and with the same factor; each pass leaves them off by sigma times
-    // the change of their multipliers.
+    // the change of their multipliers. A pass that does not converge within a few steps (rows that the
+    // bounds let the answer meet only to about what sigma y left, whose multipliers then grow without end)
+    // is undone: the last converged pass stands.
     for (int pass = 0;; ++pass) {
+        const int passLimit = pass == 0 ? maxIterations : iterations + kEqualityPassIterations;
         for (;;) {
             evaluate(problem);
             const bool exactStep = fullStep && regime_ == stepped_;
@@ -354,7 +357,7 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
                 converged = true;
                 break;
             }
-            if (iterations >= maxIterations) break;
+            if (iterations >= passLimit) break;
             if (!factorValid || !updateFactor(problem))
                 if (!factorize(problem)) break;
             factorValid = true;
@@ -369,6 +372,13 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
             y_ += step * direction_;
             ++iterations;
         }
+        if (!converged && pass > 0) {
+            y_ = convergedY_;
+            equalityShift_ = convergedShift_;
+            evaluate(problem);
+            converged = true;
+            break;
+        }
         if (!converged || pass == kEqualityPasses) break;
         double offset = 0, size = tauScale;
         for (int i = 0; i < problem.getNumRows(); ++i) {
@@ -377,6 +387,8 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
             size = std::max(size, std::abs(rowWork_[i]));
         }
         if (offset <= kEqualityRoundoff * std::max(1.0, size)) break;
+        convergedY_ = y_;
+        convergedShift_ = equalityShift_;
         for (int i = 0; i < problem.getNumRows(); ++i)
             if (problem.isEquality[static_cast<std::size_t>(i)]) equalityShift_[i] = sigma_[i] * y_[i];
         converged = fullStep = false;

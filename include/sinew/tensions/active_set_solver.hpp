@@ -78,6 +78,7 @@ private:
     static constexpr int kStallIterations = 50;   // Newton steps before a feasibility check (phase 1)
     static constexpr int kPolishIterations = 20;  // dual Newton steps after the Ipopt fallback
     static constexpr int kEqualityPasses = 3;       // shifts of the equality rows' targets (solveDual)
+    static constexpr int kEqualityPassIterations = 10;  // Newton steps a shift may take
     static constexpr double kEqualityRoundoff = 1e-14;  // relative to the rows' size
     void solveDual(const DistributionProblem& problem, DistributionResult& result, int maxIterations = -1);
     void refineProximally(const DistributionProblem& problem, DistributionResult& result);
@@ -102,6 +103,7 @@ private:
     Eigen::VectorXd sigma_;             // (rows) 1 on tolerance rows, the regulariser on equality rows
     Eigen::VectorXd center_;            // (numBounded) the regulariser's centre: 0, or x_k in a proximal step
     Eigen::VectorXd equalityShift_;     // (rows) added to the equality rows' targets (solveDual)
+    Eigen::VectorXd convergedY_, convergedShift_;  // the last converged pass's
     Eigen::VectorXd v_;                 // (numBounded) center_j + a_j^T y / weight_j: the unclamped x
     Eigen::VectorXd x_;                 // (numBounded)
     std::vector<Regime> regime_;        // (numBounded) at y
