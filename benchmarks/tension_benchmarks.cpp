@@ -20,9 +20,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <memory>
 #include <random>
 #include <string>
@@ -30,6 +28,7 @@
 
 #include <Eigen/Dense>
 
+#include "frame_clock.hpp"
 #include "sinew/core/data.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
@@ -43,6 +42,9 @@
 #include "sinew/tools/tension_analysis.hpp"
 
 namespace {
+
+using sinew::cpuMilliseconds;
+using sinew::wallMilliseconds;
 
 constexpr int kFrames = 200;
 constexpr double kFrameTime = 0.005;  // s: 200 frames, 1 s of motion
@@ -183,18 +185,6 @@ FrameOutcome describe(const sinew::TensionFrame& f) {
     for (Eigen::Index r = 0; r < f.residual.size(); ++r)
         if (!f.unactuated[static_cast<std::size_t>(r)]) distributedError += 0.5 * f.residual[r] * f.residual[r];
     return {f.iterations, f.activeWires, distributedError, f.status};
-}
-
-double wallMilliseconds() {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-// This thread's CPU time: on the shared machine it leaves out the time the thread was preempted, which
-// dominates the tail of the wall-clock frame times.
-double cpuMilliseconds() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
 }
 
 struct FrameStatistics {

@@ -11,7 +11,6 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -19,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "frame_clock.hpp"
 #include "sinew/io/model_loading.hpp"
 #include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/tools/bvh_inverse_kinematics.hpp"
@@ -49,8 +49,8 @@ const Kick& getKick() {
         const Model model = loadModel((kWholeBody / "whole_body.yaml").string(), {});
         const BvhMap map = readBvhMap((kWholeBody / "bvh_map.yaml").string());
         const BvhMotion motion = readBvhFile(kKick.string());
-        prepared->fit = runBvhInverseKinematics(model, motion, map, true, {});
         prepared->problem = prepareBvhFit(model, motion, map, true);
+        prepared->fit = runBvhInverseKinematics(prepared->problem, {});
         const BvhTargets& targets = prepared->problem.targets;
         for (std::size_t f = 0; f < targets.capture.positions.size(); ++f)
             prepared->targets.push_back({targets.capture.positions[f], Eigen::VectorXd(), targets.orientations[f]});
@@ -68,12 +68,6 @@ const Kick& getKick() {
         return prepared;
     }();
     return *kick;
-}
-
-double cpuMilliseconds() {
-    timespec now{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-    return 1e3 * static_cast<double>(now.tv_sec) + 1e-6 * static_cast<double>(now.tv_nsec);
 }
 
 double median(std::vector<double> values) {

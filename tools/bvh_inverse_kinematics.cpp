@@ -24,7 +24,12 @@ BvhInverseKinematics runBvhInverseKinematics(const Model& model, const BvhMotion
                                              InverseKinematicsRequest request,
                                              const std::function<void(const std::string&)>& notes,
                                              const std::function<void(int frame, int frames)>& onFrame) {
-    BvhFit prepared = prepareBvhFit(model, motion, map, scale);
+    return runBvhInverseKinematics(prepareBvhFit(model, motion, map, scale), std::move(request), notes, onFrame);
+}
+
+BvhInverseKinematics runBvhInverseKinematics(BvhFit prepared, InverseKinematicsRequest request,
+                                             const std::function<void(const std::string&)>& notes,
+                                             const std::function<void(int frame, int frames)>& onFrame) {
     BvhInverseKinematics fit{prepared.scales, std::move(prepared.model), prepared.unit, {}};
     request.markerTasks.clear();
     request.coordinateTasks.clear();

@@ -38,6 +38,12 @@ Eigen::Matrix3d calcInverseLeftJacobian(const Eigen::Vector3d& theta) {
     return Eigen::Matrix3d::Identity() - 0.5 * skew + c * skew * skew;
 }
 
+// M += sign A^T A for a symmetric M, by the lower half, mirrored: half the products of the full one.
+void addGaussNewtonHessian(Eigen::MatrixXd& M, const Eigen::MatrixXd& A, double sign) {
+    M.selfadjointView<Eigen::Lower>().rankUpdate(A.transpose(), sign);
+    M.triangularView<Eigen::StrictlyUpper>() = M.transpose();
+}
+
 Eigen::Vector3d calcRotationVector(const Eigen::Matrix3d& R) {
     const Eigen::AngleAxisd rotation(R);
     return rotation.angle() * rotation.axis();
@@ -245,6 +251,10 @@ InverseKinematicsSolver::Score InverseKinematicsSolver::evaluate(const InverseKi
             c_.size() == 0 || c_.lpNorm<Eigen::Infinity>() <= kClosedGap};
 }
 
+// Whether a target or loop moves with the free unknown `col` at the last evaluation (a finger no marker
+// sees does not).
+bool InverseKinematicsSolver::isObserved(Eigen::Index col) const { return !(A_.col(col).isZero(0) && G_.col(col).isZero(0)); }
+
 // The Lagrangian's gradient over the free unknowns at the last evaluation.
 Eigen::VectorXd InverseKinematicsSolver::calcLagrangianGradient() const { return A_.transpose() * r_ + G_.transpose() * multipliers_; }
 
@@ -312,10 +322,8 @@ Eigen::VectorXd InverseKinematicsSolver::solveStep(double damping, const Eigen::
     else
         stepHessian_.setZero(n, n);
     for (Eigen::Index j = 0; j < n; ++j)
-        if (A_.col(j).isZero(0) && G_.col(j).isZero(0)) stepHessian_.row(j).setZero(), stepHessian_.col(j).setZero();
-    // A^T A by its lower half, mirrored: half the products of the full one.
-    stepHessian_.selfadjointView<Eigen::Lower>().rankUpdate(A_.transpose());
-    stepHessian_.triangularView<Eigen::StrictlyUpper>() = stepHessian_.transpose();
+        if (!isObserved(j)) stepHessian_.row(j).setZero(), stepHessian_.col(j).setZero();
+    addGaussNewtonHessian(stepHessian_, A_, 1);
     for (int pass = 0; pass < kActiveSetPasses; ++pass) {
         delta = solveKkt(damping, fixed, fixedStep);
         bool changed = false;
@@ -464,12 +472,14 @@ InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTa
 // evaluation at q.
 void InverseKinematicsSolver::refreshCurvature(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q) {
     const double h = 1e-7;
-    const Eigen::MatrixXd A = A_, G = G_;
+    const Eigen::MatrixXd A = A_;
     const Eigen::VectorXd gradient = calcLagrangianGradient();
+    std::vector<char> observed(static_cast<std::size_t>(numFree_));
+    for (Eigen::Index j = 0; j < numFree_; ++j) observed[static_cast<std::size_t>(j)] = isObserved(j);
     Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(numFree_, numFree_);
     for (int u = 0; u < model_.getNumU(); ++u) {
         const int col = freeColumn_[static_cast<std::size_t>(u)];
-        if (col < 0 || (A.col(col).isZero(0) && G.col(col).isZero(0))) continue;
+        if (col < 0 || !observed[static_cast<std::size_t>(col)]) continue;
         Eigen::VectorXd plus = integrateCoordinates(model_, q, Eigen::VectorXd::Unit(model_.getNumU(), u) * h, 1.0);
         applyCoordinateCouplers(model_, plus);
         evaluate(targets, plus, true);
@@ -477,8 +487,7 @@ void InverseKinematicsSolver::refreshCurvature(const InverseKinematicsTargets& t
     }
     // An unobserved unknown's column is zero in both, and so in the difference.
     curvature_ = 0.5 * (hessian + hessian.transpose());
-    curvature_.selfadjointView<Eigen::Lower>().rankUpdate(A.transpose(), -1);
-    curvature_.triangularView<Eigen::StrictlyUpper>() = curvature_.transpose();
+    addGaussNewtonHessian(curvature_, A, -1);
     evaluate(targets, q, true);
     curvatureResiduals_ = std::sqrt(r_.squaredNorm() + multipliers_.squaredNorm());
     useCurvature_ = true;

@@ -37,5 +37,9 @@ BvhInverseKinematics runBvhInverseKinematics(const Model& model, const BvhMotion
                                              InverseKinematicsRequest request,
                                              const std::function<void(const std::string&)>& notes = {},
                                              const std::function<void(int frame, int frames)>& onFrame = {});
+// The same from a prepared fit (prepareBvhFit), which is consumed.
+BvhInverseKinematics runBvhInverseKinematics(BvhFit prepared, InverseKinematicsRequest request,
+                                             const std::function<void(const std::string&)>& notes = {},
+                                             const std::function<void(int frame, int frames)>& onFrame = {});
 
 }  // namespace sinew

@@ -96,6 +96,7 @@ private:
     void addAngularJacobian(int link, const Eigen::Matrix3d& scale_G, Eigen::Ref<Eigen::MatrixXd> rows);
     void evaluateOrientations(const InverseKinematicsTargets& targets, bool withJacobian);
     Eigen::VectorXd calcLagrangianGradient() const;
+    bool isObserved(Eigen::Index col) const;
     std::pair<int, double> findFreeColumn(int u) const;
     void fillLoopGaps(Eigen::VectorXd& c, Eigen::MatrixXd* G);
     void refreshCurvature(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q);
