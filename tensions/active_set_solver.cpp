@@ -325,12 +325,60 @@ void ActiveSetSolver::refineProximally(const DistributionProblem& problem, Distr
     center_.setZero();
 }
 
+// Newton steps on the dual from y_ until converged (true) or `limit` iterations in all, a non-finite step
+// or a singular factor (false). fullStep: whether the last step was a full one (carried across passes).
+bool ActiveSetSolver::runNewton(const DistributionProblem& problem, double tauScale, int limit, int& iterations,
+                                bool& fullStep, bool& factorValid) {
+    for (;;) {
+        evaluate(problem);
+        const bool exactStep = fullStep && regime_ == stepped_;
+        toReduced(gradient_, reducedGradient_);
+        // Size of the generalized forces: tau and A x (= tau - gradient - Sigma y).
+        rowWork_ = problem.target - gradient_ - sigma_.cwiseProduct(y_);
+        const double scale = std::max(tauScale, rowWork_.cwiseAbs().maxCoeff());
+        const double gradientNorm = reducedGradient_.size() ? reducedGradient_.cwiseAbs().maxCoeff() : 0.0;
+        if (!std::isfinite(gradientNorm)) return false;
+        if (gradientNorm <= options_.tolerance * scale || (exactStep && gradientNorm <= options_.roundoffTolerance * scale))
+            return true;
+        if (iterations >= limit) return false;
+        if (!factorValid || !updateFactor(problem))
+            if (!factorize(problem)) return false;
+        factorValid = true;
+        reducedDirection_ = reducedGradient_;
+        L_.triangularView<Eigen::Lower>().solveInPlace(reducedDirection_);
+        L_.triangularView<Eigen::Lower>().adjoint().solveInPlace(reducedDirection_);
+        fromReduced(reducedDirection_, direction_);
+        stepped_ = regime_;
+        const double step = searchLine(problem);
+        fullStep = std::abs(step - 1) <= 1e-3;
+        if (!std::isfinite(step)) return false;
+        y_ += step * direction_;
+        ++iterations;
+    }
+}
+
+// After a converged pass: false when the equality rows are met to roundoff; otherwise keeps the pass as the
+// one to fall back to and shifts their targets by sigma y for the next (the method of multipliers).
+bool ActiveSetSolver::shiftEqualityTargets(const DistributionProblem& problem, double tauScale) {
+    double offset = 0, size = tauScale;
+    for (int i = 0; i < problem.getNumRows(); ++i) {
+        if (!problem.isEquality[static_cast<std::size_t>(i)]) continue;
+        offset = std::max(offset, std::abs(sigma_[i] * y_[i] - equalityShift_[i]));
+        size = std::max(size, std::abs(rowWork_[i]));
+    }
+    if (offset <= kEqualityRoundoff * std::max(1.0, size)) return false;
+    convergedY_ = y_;
+    convergedShift_ = equalityShift_;
+    for (int i = 0; i < problem.getNumRows(); ++i)
+        if (problem.isEquality[static_cast<std::size_t>(i)]) equalityShift_[i] = sigma_[i] * y_[i];
+    return true;
+}
+
 // The dual Newton active set alone, within maxIterations (default: the options'): Optimal, Infeasible
 // (converged with an equality row unmet; its residual as reserve) or Failed.
 void ActiveSetSolver::solveDual(const DistributionProblem& problem, DistributionResult& result, int maxIterations) {
     if (maxIterations < 0) maxIterations = options_.maxIterations;
     setUpFrame(problem);
-    const int numBounded = problem.getNumBounded();
     const double tauScale = problem.target.size() ? problem.target.cwiseAbs().maxCoeff() : 0.0;
     bool converged = false, factorValid = false, fullStep = false;
     int iterations = 0;
@@ -344,34 +392,7 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
     // is undone: the last converged pass stands.
     for (int pass = 0;; ++pass) {
         const int passLimit = pass == 0 ? maxIterations : iterations + kEqualityPassIterations;
-        for (;;) {
-            evaluate(problem);
-            const bool exactStep = fullStep && regime_ == stepped_;
-            toReduced(gradient_, reducedGradient_);
-            // Size of the generalized forces: tau and A x (= tau - gradient - Sigma y).
-            rowWork_ = problem.target - gradient_ - sigma_.cwiseProduct(y_);
-            const double scale = std::max(tauScale, rowWork_.cwiseAbs().maxCoeff());
-            const double gradientNorm = reducedGradient_.size() ? reducedGradient_.cwiseAbs().maxCoeff() : 0.0;
-            if (!std::isfinite(gradientNorm)) break;
-            if (gradientNorm <= options_.tolerance * scale || (exactStep && gradientNorm <= options_.roundoffTolerance * scale)) {
-                converged = true;
-                break;
-            }
-            if (iterations >= passLimit) break;
-            if (!factorValid || !updateFactor(problem))
-                if (!factorize(problem)) break;
-            factorValid = true;
-            reducedDirection_ = reducedGradient_;
-            L_.triangularView<Eigen::Lower>().solveInPlace(reducedDirection_);
-            L_.triangularView<Eigen::Lower>().adjoint().solveInPlace(reducedDirection_);
-            fromReduced(reducedDirection_, direction_);
-            stepped_ = regime_;
-            const double step = searchLine(problem);
-            fullStep = std::abs(step - 1) <= 1e-3;
-            if (!std::isfinite(step)) break;
-            y_ += step * direction_;
-            ++iterations;
-        }
+        converged = runNewton(problem, tauScale, passLimit, iterations, fullStep, factorValid);
         if (!converged && pass > 0) {
             y_ = convergedY_;
             equalityShift_ = convergedShift_;
@@ -379,26 +400,21 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
             converged = true;
             break;
         }
-        if (!converged || pass == kEqualityPasses) break;
-        double offset = 0, size = tauScale;
-        for (int i = 0; i < problem.getNumRows(); ++i) {
-            if (!problem.isEquality[static_cast<std::size_t>(i)]) continue;
-            offset = std::max(offset, std::abs(sigma_[i] * y_[i] - equalityShift_[i]));
-            size = std::max(size, std::abs(rowWork_[i]));
-        }
-        if (offset <= kEqualityRoundoff * std::max(1.0, size)) break;
-        convergedY_ = y_;
-        convergedShift_ = equalityShift_;
-        for (int i = 0; i < problem.getNumRows(); ++i)
-            if (problem.isEquality[static_cast<std::size_t>(i)]) equalityShift_[i] = sigma_[i] * y_[i];
-        converged = fullStep = false;
+        if (!converged || pass == kEqualityPasses || !shiftEqualityTargets(problem, tauScale)) break;
+        fullStep = false;
     }
     if (!y_.allFinite()) {  // numerical breakdown: report the bounds-feasible point of y = 0, never NaN
         y_.setZero();
         evaluate(problem);
         converged = false;
     }
+    writeDualResult(problem, converged, iterations, result);
+}
 
+// The primal answer, summary and status at the multipliers y_ (evaluated).
+void ActiveSetSolver::writeDualResult(const DistributionProblem& problem, bool converged, int iterations,
+                                      DistributionResult& result) {
+    const int numBounded = problem.getNumBounded();
     result.x.resize(problem.getNumVariables());
     result.x.head(numBounded) = x_;
     // Free variables: at the optimum the gradient lies in range(G), and G lambda takes it up.

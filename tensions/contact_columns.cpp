@@ -79,6 +79,17 @@ void ContactColumns::addPattern(int columnOffset, std::vector<Eigen::Triplet<dou
     }
 }
 
+void ContactColumns::markEqualityRows(std::vector<bool>& isEquality) const {
+    for (std::size_t c = 0; c < model_.getContacts().size(); ++c) {
+        if (!inContact_[c]) continue;
+        int root = model_.getContacts()[c].link;
+        while (model_.getJoint(root).parent != kGround) root = model_.getJoint(root).parent;
+        const Joint& joint = model_.getJoint(root);
+        if (joint.type != JointType::Free) continue;
+        for (int k = 3; k < 6; ++k) isEquality[static_cast<std::size_t>(joint.uStart + k)] = true;
+    }
+}
+
 void ContactColumns::update(const Data& data, const std::vector<char>& inContact, int columnOffset,
                             Eigen::SparseMatrix<double>& A) {
     for (std::size_t c = 0; c < model_.getContacts().size(); ++c) {

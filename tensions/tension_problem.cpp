@@ -45,11 +45,7 @@ TensionProblem TensionProblemBuilder::makeProblem() const {
     problem.unactuated.assign(static_cast<std::size_t>(nu), 0);
     problem.forceMultiplier.setOnes(numWires);
     problem.forcePerActivation = settings_.maxTension;
-    if (settings_.variables == WireVariables::Activation) {
-        problem.distribution.tolerance.setZero(nu);
-        problem.distribution.isEquality.assign(static_cast<std::size_t>(nu), true);
-        rewriteInActivations(problem);
-    }
+    if (settings_.variables == WireVariables::Activation) rewriteInActivations(problem);
     return problem;
 }
 
@@ -69,10 +65,12 @@ void TensionProblemBuilder::calcForceMultipliers(Data& data, TensionProblem& pro
 }
 
 // Static optimization's variables: each wire's column per unit activation, activation bounds, the cost
-// Σ weight_j / p |x_j|^p with weights p (Σ |x|^p, as OpenSim's), no LP cost.
+// Σ weight_j / p |x_j|^p with weights p (Σ |x|^p, as OpenSim's), no LP cost; every row met exactly.
 void TensionProblemBuilder::rewriteInActivations(TensionProblem& problem) const {
     DistributionProblem& distribution = problem.distribution;
     const int numWires = model_.getNumWires();
+    distribution.tolerance.setZero(model_.getNumU());
+    distribution.isEquality.assign(static_cast<std::size_t>(model_.getNumU()), true);
     for (int w = 0; w < numWires; ++w)
         for (Eigen::SparseMatrix<double>::InnerIterator it(distribution.A, w); it; ++it)
             it.valueRef() *= problem.forcePerActivation[w];
@@ -91,6 +89,19 @@ void TensionProblemBuilder::build(Data& data, const Eigen::VectorXd& tau, Tensio
     if (settings_.variables != WireVariables::Activation) return;
     calcForceMultipliers(data, problem);
     rewriteInActivations(problem);
+}
+
+void TensionProblemBuilder::solve(TensionSolver& solver, TensionProblem& problem, DistributionResult& result) const {
+    solver.solve(problem.distribution, result);
+    if (result.status != DistributionStatus::Infeasible || settings_.variables == WireVariables::Activation) return;
+    std::vector<bool>& isEquality = problem.distribution.isEquality;
+    const std::vector<bool>& virtualLinkRows = wires_.getVirtualLinkRows();
+    bool blockRowLacks = false;
+    for (std::size_t i = 0; i < isEquality.size(); ++i)
+        blockRowLacks = blockRowLacks || (isEquality[i] && !virtualLinkRows[i] && result.reserve[static_cast<Eigen::Index>(i)] != 0);
+    if (!blockRowLacks) return;
+    isEquality = virtualLinkRows;
+    solver.solve(problem.distribution, result);
 }
 
 void TensionProblemBuilder::calcTensions(const TensionProblem& problem, const Eigen::VectorXd& x,

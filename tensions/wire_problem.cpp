@@ -43,6 +43,12 @@ WireProblemBuilder::WireProblemBuilder(const Model& model, Eigen::VectorXd maxTe
             throw Error("wire problem: wire '" + model.getWire(w).name + "' has maximum tension " +
                         std::to_string(maxTension_[w]) + " N, expected a finite value > 0");
     const int nu = model.getNumU(), numWires = model.getNumWires();
+    virtualLinkRows_.assign(static_cast<std::size_t>(nu), false);
+    for (int link = 0; link < model.getNumLinks(); ++link) {
+        if (!model.getLink(link).isVirtual) continue;
+        const Joint& joint = model.getJoint(link);
+        for (int k = 0; k < joint.nu; ++k) virtualLinkRows_[static_cast<std::size_t>(joint.uStart + k)] = true;
+    }
     std::vector<Eigen::Triplet<double>> entries;
     std::vector<bool> rows;
     const auto addColumn = [&](int column) {
@@ -95,12 +101,7 @@ DistributionProblem WireProblemBuilder::makeProblem() const {
     }
     problem.target.setZero(nu);
     problem.tolerance.setConstant(nu, options_.torqueTolerance);
-    problem.isEquality.assign(static_cast<std::size_t>(nu), false);
-    for (int link = 0; link < model_.getNumLinks(); ++link) {
-        if (!model_.getLink(link).isVirtual) continue;
-        const Joint& joint = model_.getJoint(link);
-        for (int k = 0; k < joint.nu; ++k) problem.isEquality[static_cast<std::size_t>(joint.uStart + k)] = true;
-    }
+    problem.isEquality = virtualLinkRows_;
     return problem;
 }
 
@@ -123,10 +124,12 @@ void WireProblemBuilder::update(Data& data, const Eigen::MatrixXd& J, const Eige
     meanSquaredArm = numWires ? meanSquaredArm / numWires : 0;
     const double wireWeight = options_.regularization * (meanSquaredArm > 0 ? meanSquaredArm : 1.0);
     problem.weight.head(numWires).setConstant(wireWeight);
+    problem.isEquality = virtualLinkRows_;
     for (int b = 0; b < getNumBlocks(); ++b) {
         ProblemColumns& block = *columns_[static_cast<std::size_t>(b)];
         const int start = getBlockStart(b), size = block.count();
         block.update(data, start, problem.A);
+        block.markEqualityRows(problem.isEquality);
         block.setVariables(wireWeight, problem.lower.segment(start, size), problem.upper.segment(start, size),
                            problem.cost.segment(start, size), problem.weight.segment(start, size));
     }

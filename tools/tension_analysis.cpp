@@ -108,7 +108,7 @@ const TensionFrame& TensionAnalysis::calcFrame(const Eigen::VectorXd& q, const E
                                                const std::vector<SpatialVector>& appliedLinkForces) {
     calcInverseDynamics(model_, data_, q, u, udot, appliedLinkForces, frame_.tau);  // kinematics at (q, u) too
     builder_.build(data_, frame_.tau, problem_);
-    solver_->solve(problem_.distribution, result_);
+    builder_.solve(*solver_, problem_, result_);
     readSolution();
     return frame_;
 }

@@ -2,6 +2,7 @@
 // forces are unknowns of the LP and the QP beside the tensions.
 // - Standing still on the rigid-legged stander: the contact forces' sum is the body's weight (Newton) and
 //   their moment balances gravity's (the centre of mass found from the links, not from the problem).
+// - Accelerating on wires too weak to hold it: the feet's forces still sum to M (a - g) (Newton).
 // - The whole-body model standing, then swinging its right leg: the left foot detected down throughout and
 //   the right one lifted; on both feet every frame solved by both methods, the root's residual within 5 %
 //   of body weight, Z(QP) <= Z(LP) (to the QP's regulariser) and the virtual links in equilibrium.
@@ -82,6 +83,35 @@ TEST(TensionContact, StandingStillTheGroundCarriesTheWeightAndBalancesItsMoment)
         }
         EXPECT_NEAR((force - Eigen::Vector3d(0, 0, weight)).norm(), 0, 1e-5 * weight) << method;
         EXPECT_NEAR(momentAboutCom.norm(), 0, 1e-5 * weight) << method;
+    }
+}
+
+// Accelerating as one rigid body on wires too weak for the hips (0.01 N): the hips' torques cannot be met, and
+// a least-squares trade could spread their residual onto the root by pushing the ground off Newton's law. The
+// root's force rows are equalities on a frame with a foot down, so the feet's forces sum to M (a - g) (the
+// mass from the links) and the root's residual force is nil, in the LP and the QP alike.
+TEST(TensionContact, AFootDownBalancesTheBodysForceExactlyWhateverTheWiresLack) {
+    const Model model = test::makeStandingModel();
+    const Eigen::VectorXd q = model.getDefaultQ(), u = Eigen::VectorXd::Zero(model.getNumU());
+    const Eigen::Vector3d acceleration(2, 1, 0.5);
+    Eigen::VectorXd udot = u;
+    const int root = model.getJoint(0).uStart;  // the trunk's free joint: [angular; linear]
+    udot.segment<3>(root + 3) = acceleration;
+    const std::vector<SpatialVector> noLoads(static_cast<std::size_t>(model.getNumLinks()), SpatialVector::Zero());
+    Data data(model);
+    calcPositionKinematics(model, data, q);
+    const double mass = calcTotalMass(model);
+    const Eigen::Vector3d groundForce = mass * (acceleration - model.getGravity());
+    for (const std::string method : {"lp", "qp"}) {
+        ContactRun run = makeRun(model, method, Eigen::VectorXd::Constant(model.getNumWires(), 0.01));
+        run.contacts->setInContact({1, 1});
+        const TensionFrame& frame = run.analysis->calcFrame(q, u, udot, noLoads);
+        ASSERT_NE(frame.status, DistributionStatus::Failed) << method;
+        EXPECT_GT(frame.residual.segment<6>(model.getJoint(1).uStart).norm(), 1) << method << ": the hips lack torque";
+        EXPECT_LE(frame.residual.segment<3>(root + 3).norm(), 1e-6 * groundForce.norm()) << method;
+        Eigen::Vector3d force = Eigen::Vector3d::Zero();
+        for (int c = 0; c < 2; ++c) force += run.contacts->calcWrench(data, c, getContactVariables(run)).force;
+        EXPECT_LE((force - groundForce).norm(), 1e-6 * groundForce.norm()) << method;
     }
 }
 

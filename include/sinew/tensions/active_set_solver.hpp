@@ -81,6 +81,10 @@ private:
     static constexpr int kEqualityPassIterations = 10;  // Newton steps a shift may take
     static constexpr double kEqualityRoundoff = 1e-14;  // relative to the rows' size
     void solveDual(const DistributionProblem& problem, DistributionResult& result, int maxIterations = -1);
+    bool runNewton(const DistributionProblem& problem, double tauScale, int limit, int& iterations, bool& fullStep,
+                   bool& factorValid);
+    bool shiftEqualityTargets(const DistributionProblem& problem, double tauScale);
+    void writeDualResult(const DistributionProblem& problem, bool converged, int iterations, DistributionResult& result);
     void refineProximally(const DistributionProblem& problem, DistributionResult& result);
     void setUpFrame(const DistributionProblem& problem);
     void evaluate(const DistributionProblem& problem);

@@ -48,6 +48,12 @@ public:
     }
     void setVariables(double wireWeight, Eigen::Ref<Eigen::VectorXd> lower, Eigen::Ref<Eigen::VectorXd> upper,
                       Eigen::Ref<Eigen::VectorXd> cost, Eigen::Ref<Eigen::VectorXd> weight) const override;
+    // On a frame with a contact down, the force rows (the linear half of u) of the free root joints the
+    // touching contacts hang from: the ground is all that pushes the body as a whole, so the body's linear
+    // momentum is balanced by the contact forces exactly, never by a residual force on the root. Its moment
+    // rows stay least-squares rows: a captured motion's moment about the centre of pressure is what a sole
+    // polygon cannot always hold. Without a contact down, nothing (the root's rows are then unactuated).
+    void markEqualityRows(std::vector<bool>& isEquality) const override;
 
     int getNumColumns() const { return numColumns_; }  // Σ over contacts of (sole vertices x K)
     int getNumEdges() const { return numEdges_; }

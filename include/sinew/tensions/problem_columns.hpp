@@ -8,7 +8,7 @@
 //
 // Column j of a block is the generalized force (nu) per unit of its variable j, the wires' sign (A x is
 // what the variables produce). The builder asks a block for its sparsity pattern once and for its values,
-// bounds, LP cost and QP weight every frame; it never drops a block's small entries as roundoff.
+// bounds, LP cost, QP weight and equality rows every frame; it never drops a block's small entries as roundoff.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <vector>
@@ -37,6 +37,9 @@ public:
     // Methods in activations (WireVariables::Activation) use the bounds only: their cost is Σ |x|^p.
     virtual void setVariables(double wireWeight, Eigen::Ref<Eigen::VectorXd> lower, Eigen::Ref<Eigen::VectorXd> upper,
                               Eigen::Ref<Eigen::VectorXd> cost, Eigen::Ref<Eigen::VectorXd> weight) const = 0;
+    // Sets isEquality (nu) on the rows the frame's variables must meet exactly rather than in the least-squares
+    // or band sense (after update, each frame; the virtual links' rows are set already). None by default.
+    virtual void markEqualityRows(std::vector<bool>& isEquality) const { (void)isEquality; }
 };
 
 }  // namespace sinew

@@ -9,7 +9,7 @@
 //      activation from its force law (ForceLaw::calcActiveForceMultiplier, at the paths' lengths and speeds),
 //      the wire columns scaled by it, every row exact, the cost Σ |x|^p (weights p).
 //
-// The LP (Eq. 11-12) and QP (Eq. 14) take the problem in tensions as stage 3 leaves it.
+// The LP (Eq. 11-12) and QP (Eq. 14) take the problem in tensions as stage 3 leaves it (solve, below).
 #include <Eigen/Core>
 #include <memory>
 #include <vector>
@@ -19,6 +19,7 @@
 #include "sinew/tensions/distribution_problem.hpp"
 #include "sinew/tensions/problem_columns.hpp"
 #include "sinew/tensions/tension_method_registry.hpp"
+#include "sinew/tensions/tension_solver.hpp"
 #include "sinew/tensions/unactuated_rows.hpp"
 #include "sinew/tensions/wire_problem.hpp"
 
@@ -61,6 +62,13 @@ public:
     // kinematics at the frame's (q, u), as calcInverseDynamics leaves them; its wire paths, speeds and
     // scratch buffers are overwritten. Allocates nothing.
     void build(Data& data, const Eigen::VectorXd& tau, TensionProblem& problem);
+
+    // Solves the built problem by `solver`. The equality rows a block adds at a frame (the root's force rows
+    // with a foot down, contact_columns.hpp) give way first: a frame Infeasible with a reserve on one of them
+    // (a ground force the feet cannot give: pulling, or beyond friction) is solved again with those rows as
+    // tolerance rows, so that what the ground lacks shows as the root's residual and never unbalances a
+    // virtual link. (Activations: every row is exact anyway.)
+    void solve(TensionSolver& solver, TensionProblem& problem, DistributionResult& result) const;
 
     // The wires' tensions (N) of a solution x of `problem`.
     void calcTensions(const TensionProblem& problem, const Eigen::VectorXd& x, Eigen::VectorXd& tension) const;

@@ -5,7 +5,8 @@
 // loop, N, on link B at its loop point; link A gets the opposite). Column j of A is the generalized force
 // of a unit tension, -J^T e_j (docs/wire-jacobian.md), so A x = tau is the paper's Eq. 8, tau = J^T f with
 // its sign convention, plus the loops' and blocks' shares. The rows of virtual links' joints are
-// equalities (a massless link is in equilibrium); every other row is a tolerance row. The whole frame
+// equalities (a massless link is in equilibrium), and so are the rows a block marks at a frame (the root's
+// force rows when a foot is down: contact_columns.hpp); every other row is a tolerance row. The whole frame
 // (inverse dynamics' tau, the unactuated rows, static optimization's activations) is tension_problem.hpp.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -39,7 +40,7 @@ public:
     DistributionProblem makeProblem() const;
 
     // One frame: A = [-J^T, blocks, loop columns] in the fixed pattern (Eq. 8), target = tau (nu), the
-    // QP weights and the blocks' bounds. J is numWires x nu (calcWireJacobian); `data` must hold
+    // QP weights, the blocks' bounds and the frame's equality rows. J is numWires x nu (calcWireJacobian); `data` must hold
     // calcPositionKinematics at the frame's q (and what the blocks read; its scratchF_G is used as
     // workspace for the loop columns).
     void update(Data& data, const Eigen::MatrixXd& J, const Eigen::VectorXd& tau, DistributionProblem& problem) const;
@@ -50,12 +51,16 @@ public:
     int getBlockStart(int b) const { return blockStart_[static_cast<std::size_t>(b)]; }
     int getBlocksEnd() const { return blockStart_.back(); }
 
+    // (nu) the virtual links' rows: the equality rows of every frame, before the blocks mark theirs.
+    const std::vector<bool>& getVirtualLinkRows() const { return virtualLinkRows_; }
+
 private:
     const Model& model_;
     Eigen::VectorXd maxTension_;
     WireProblemOptions options_;
     std::vector<std::shared_ptr<ProblemColumns>> columns_;
     std::vector<int> blockStart_;           // (blocks + 1)
+    std::vector<bool> virtualLinkRows_;     // (nu)
     Eigen::SparseMatrix<double> pattern_;  // (nu x (numWires + block columns + 3 numLoops)) ones where A may be non-zero
 };
 
