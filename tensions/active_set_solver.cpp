@@ -326,9 +326,10 @@ void ActiveSetSolver::refineProximally(const DistributionProblem& problem, Distr
 }
 
 // Newton steps on the dual from y_ until converged (true) or `limit` iterations in all, a non-finite step
-// or a singular factor (false). fullStep: whether the last step was a full one (carried across passes).
+// or a singular factor (false). fullStep: whether the last step was a full one (carried across passes);
+// relativeGradient: the last dual gradient relative to the size of the generalized forces.
 bool ActiveSetSolver::runNewton(const DistributionProblem& problem, double tauScale, int limit, int& iterations,
-                                bool& fullStep, bool& factorValid) {
+                                bool& fullStep, bool& factorValid, double& relativeGradient) {
     for (;;) {
         evaluate(problem);
         const bool exactStep = fullStep && regime_ == stepped_;
@@ -337,6 +338,7 @@ bool ActiveSetSolver::runNewton(const DistributionProblem& problem, double tauSc
         rowWork_ = problem.target - gradient_ - sigma_.cwiseProduct(y_);
         const double scale = std::max(tauScale, rowWork_.cwiseAbs().maxCoeff());
         const double gradientNorm = reducedGradient_.size() ? reducedGradient_.cwiseAbs().maxCoeff() : 0.0;
+        relativeGradient = scale > 0 ? gradientNorm / scale : gradientNorm;
         if (!std::isfinite(gradientNorm)) return false;
         if (gradientNorm <= options_.tolerance * scale || (exactStep && gradientNorm <= options_.roundoffTolerance * scale))
             return true;
@@ -387,12 +389,17 @@ void ActiveSetSolver::solveDual(const DistributionProblem& problem, Distribution
     // optimum), a milli-newton on a virtual link that a frame pulls hard against (multipliers of 1e3-1e9
     // N on the kick). The method of multipliers: the rows' targets shifted by sigma y and the Newton steps
     // resumed, warm, in the same regime and with the same factor; each pass leaves them off by sigma times
-    // the change of their multipliers. A pass that does not converge within a few steps (rows that the
-    // bounds let the answer meet only to about what sigma y left, whose multipliers then grow without end)
-    // is undone: the last converged pass stands.
+    // the change of their multipliers. A pass that ends at the rounding floor (a gradient within
+    // roundoffTolerance) stands although no last full step proved it: after a shift of 1e-4 N the kick's
+    // strike frames end at 1e-10 of tau, their last steps cut short by breakpoints at t ~ 0 (variables
+    // on their bounds), with the rows met to 2e-9 N. A pass that does not converge within a few steps
+    // otherwise (rows that the bounds let the answer meet only to about what sigma y left, whose
+    // multipliers then grow without end) is undone: the last converged pass stands.
     for (int pass = 0;; ++pass) {
         const int passLimit = pass == 0 ? maxIterations : iterations + kEqualityPassIterations;
-        converged = runNewton(problem, tauScale, passLimit, iterations, fullStep, factorValid);
+        double relativeGradient = 0;
+        converged = runNewton(problem, tauScale, passLimit, iterations, fullStep, factorValid, relativeGradient);
+        if (!converged && pass > 0 && relativeGradient <= options_.roundoffTolerance) converged = true;
         if (!converged && pass > 0) {
             y_ = convergedY_;
             equalityShift_ = convergedShift_;

@@ -82,7 +82,7 @@ private:
     static constexpr double kEqualityRoundoff = 1e-14;  // relative to the rows' size
     void solveDual(const DistributionProblem& problem, DistributionResult& result, int maxIterations = -1);
     bool runNewton(const DistributionProblem& problem, double tauScale, int limit, int& iterations, bool& fullStep,
-                   bool& factorValid);
+                   bool& factorValid, double& relativeGradient);
     bool shiftEqualityTargets(const DistributionProblem& problem, double tauScale);
     void writeDualResult(const DistributionProblem& problem, bool converged, int iterations, DistributionResult& result);
     void refineProximally(const DistributionProblem& problem, DistributionResult& result);
