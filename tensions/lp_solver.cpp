@@ -172,8 +172,12 @@ struct LpSolver::Backend {
     }
 
     // Dual simplex from the current basis; on trouble (iteration limit, numerical errors) once more from
-    // the cold start, then the primal simplex. Clp's status: 0 optimal, 1 infeasible, others failed.
+    // the cold start, then the primal simplex. Clp's status: 0 optimal, 1 infeasible, others failed. Each
+    // try is capped at 20 pivots per row and column: a warm basis can stall the dual simplex on a degenerate
+    // frame (two frames of a kick's re-fit, whose feet's force rows are exact, ran 1e6 pivots, 3 min each,
+    // where the cold start takes 3,000 to 4,000).
     int run(const DistributionProblem& problem) {
+        simplex.setMaximumIterations(20 * (simplex.numberRows() + simplex.numberColumns()));
         simplex.dual();
         if (simplex.status() <= 1) return simplex.status();
         startFromSlacksAndFreeColumns(problem, simplex, rowTaken);
