@@ -176,11 +176,18 @@ struct LpSolver::Backend {
     // try is capped at 20 pivots per row and column: a warm basis can stall the dual simplex on a degenerate
     // frame (two frames of a kick's re-fit, whose feet's force rows are exact, ran 1e6 pivots, 3 min each,
     // where the cold start takes 3,000 to 4,000).
+    // After a capped try Clp's own state (its perturbed costs and bounds) is no start: the cold start reloads
+    // the problem into a fresh simplex (reusing it returned "optimal" with Z = 3e37 on the re-fit's next frame).
     int run(const DistributionProblem& problem) {
-        simplex.setMaximumIterations(20 * (simplex.numberRows() + simplex.numberColumns()));
+        const int pivotCap = 20 * (simplex.numberRows() + simplex.numberColumns());
+        simplex.setMaximumIterations(pivotCap);
         simplex.dual();
         if (simplex.status() <= 1) return simplex.status();
-        startFromSlacksAndFreeColumns(problem, simplex, rowTaken);
+        simplex = ClpSimplex();
+        simplex.setLogLevel(0);
+        loaded = false;
+        load(problem);
+        simplex.setMaximumIterations(pivotCap);
         simplex.dual();
         if (simplex.status() <= 1) return simplex.status();
         simplex.primal();
