@@ -184,7 +184,7 @@ private:
         const std::optional<int> markers = parseInteger(value("NumMarkers"));
         if (!markers || *markers < 1)
             fail(valuesLine_, headerColumn("NumMarkers"), "'" + value("NumMarkers") + "' is not an integer >= 1");
-        table_.markers.reserve(static_cast<std::size_t>(*markers));
+        // Not reserved from the header: a NumMarkers of 2e9 would ask for 64 GB before the names are counted.
         numMarkers_ = *markers;
         const std::optional<double> divisor = unitDivisor(value("Units"));
         if (!divisor)

@@ -111,6 +111,19 @@ TEST(FuzzRegression, TrcLineOfOtherWhiteSpace) {
     }
 }
 
+// Found by CI's fuzz_trc_file run: the reader reserved room for NumMarkers names before counting them, so a
+// header of 2e9 markers asked for 64 GB (std::bad_alloc here, over libFuzzer's malloc limit there).
+TEST(FuzzRegression, TrcHugeMarkerCountIsCountedNotReserved) {
+    const fs::path dir = freshFolder("fuzz_trc_count");
+    const std::string path = (dir / "count.trc").string();
+    std::ofstream(path) << "PathFileType\t4\t(X/Y/Z)\tcount.trc\n"
+                        << "DataRate\tCameraRate\tNumFrames\tNumMarkers\tUnits\n"
+                        << "60\t60\t1\t2000000000\tm\n"
+                        << "Frame#\tTime\tA\t\t\n\t\tX1\tY1\tZ1\n1\t0\t1\t2\t3\n";
+    EXPECT_TRUE(test::throwsErrorAt([&] { readTrcFile(path); }, path + ":4: ",
+                                    {"1 marker names", "NumMarkers=2000000000"}, "NumMarkers=2e9"));
+}
+
 // A ground reaction of 1e308 N once gave forces of 1e295 with exit 0.
 TEST(HostileInput, StorageMagnitudesNameFileLineAndColumn) {
     const fs::path dir = freshFolder("magnitudes");
