@@ -121,6 +121,7 @@ InverseKinematicsSolver::InverseKinematicsSolver(const Model& model, std::vector
     markerErrors_.resize(static_cast<Eigen::Index>(markerTasks_.size()));
     jointMotion_G_.resize(static_cast<std::size_t>(model.getNumLinks()));
     curvature_.setZero(numFree_, numFree_);
+    observedIndex_.assign(static_cast<std::size_t>(numFree_), -1);
     orientationErrors_.resize(static_cast<Eigen::Index>(orientationTasks_.size()));
 }
 
@@ -270,7 +271,15 @@ void InverseKinematicsSolver::closeLoops(Eigen::VectorXd& q) {
         calcJointMotions();
         fillLoopGaps(c_, &G_);
         if (c_.lpNorm<Eigen::Infinity>() <= kClosedGap) return;
-        q = integrateCoordinates(model_, q, toSpeeds(G_.completeOrthogonalDecomposition().solve(-c_)), 1.0);
+        // The minimum-norm step leaves the unknowns no loop moves where they are: it is decomposed over the
+        // loops' chains alone (a few dozen columns of the whole body's 156).
+        loopColumns_.clear();
+        for (Eigen::Index j = 0; j < numFree_; ++j)
+            if (!G_.col(j).isZero(0)) loopColumns_.push_back(j);
+        Eigen::VectorXd delta = Eigen::VectorXd::Zero(numFree_);
+        const Eigen::VectorXd chainStep = G_(Eigen::all, loopColumns_).completeOrthogonalDecomposition().solve(-c_);
+        delta(loopColumns_) = chainStep;
+        q = integrateCoordinates(model_, q, toSpeeds(delta), 1.0);
         applyCoordinateCouplers(model_, q);
     }
 }
@@ -281,10 +290,10 @@ void InverseKinematicsSolver::closeLoops(Eigen::VectorXd& q) {
 // complete orthogonal decomposition, since loops may repeat one another's constraints (rank-deficient G).
 Eigen::VectorXd InverseKinematicsSolver::solveKkt(double damping, const std::vector<bool>& fixed,
                                                   const Eigen::VectorXd& fixedStep) {
-    const Eigen::Index n = numFree_;
+    const Eigen::Index n = stepHessian_.rows();
     H_ = stepHessian_;
-    Eigen::VectorXd b = -(A_.transpose() * r_), e = -c_;
-    Eigen::MatrixXd G = G_;
+    Eigen::VectorXd b = -(observedA_.transpose() * r_), e = -c_;
+    Eigen::MatrixXd G = observedG_;
     for (Eigen::Index j = 0; j < n; ++j) {
         if (!fixed[static_cast<std::size_t>(j)]) continue;
         b -= H_.col(j) * fixedStep[j];
@@ -307,38 +316,62 @@ Eigen::VectorXd InverseKinematicsSolver::solveKkt(double damping, const std::vec
     return free - HinvGt * multipliers_;
 }
 
+// The free unknowns that a target or loop observes at the last evaluation (the kick's 120 of 156), with A's
+// and G's columns for them. The others are decoupled from the step (no row moves them, so neither does
+// the curvature): the step's algebra runs on the observed ones alone.
+void InverseKinematicsSolver::gatherObservedColumns() {
+    observed_.clear();
+    for (Eigen::Index j = 0; j < numFree_; ++j) {
+        const bool seen = isObserved(j);
+        observedIndex_[static_cast<std::size_t>(j)] = seen ? static_cast<Eigen::Index>(observed_.size()) : -1;
+        if (seen) observed_.push_back(j);
+    }
+    observedA_ = A_(Eigen::all, observed_);
+    observedG_ = G_(Eigen::all, observed_);
+}
+
 Eigen::VectorXd InverseKinematicsSolver::solveStep(double damping, const Eigen::VectorXd& q) {
-    const Eigen::Index n = numFree_;
+    gatherObservedColumns();
+    const Eigen::Index n = static_cast<Eigen::Index>(observed_.size());
     // The bounded unknowns fixed at a bound this pass, and how far that moves them.
     std::vector<bool> fixed(static_cast<std::size_t>(n), false);
     Eigen::VectorXd fixedStep = Eigen::VectorXd::Zero(n);
-    Eigen::VectorXd delta(n);
+    Eigen::VectorXd step(n);
     // The curvature learnt at another pose, as its residuals and multipliers are to these: it vanishes
     // with them (quadratic convergence onto a capture the model can reach), and where a target or loop
     // no longer observes an unknown (a marker unseen this frame) it no longer curves.
     const double residuals = std::sqrt(r_.squaredNorm() + multipliers_.squaredNorm());
     if (useCurvature_ && curvatureResiduals_ > 0)
-        stepHessian_ = std::min(1.0, residuals / curvatureResiduals_) * curvature_;
+        stepHessian_ = std::min(1.0, residuals / curvatureResiduals_) * curvature_(observed_, observed_);
     else
         stepHessian_.setZero(n, n);
-    for (Eigen::Index j = 0; j < n; ++j)
-        if (!isObserved(j)) stepHessian_.row(j).setZero(), stepHessian_.col(j).setZero();
-    addGaussNewtonHessian(stepHessian_, A_, 1);
+    addGaussNewtonHessian(stepHessian_, observedA_, 1);
     for (int pass = 0; pass < kActiveSetPasses; ++pass) {
-        delta = solveKkt(damping, fixed, fixedStep);
+        step = solveKkt(damping, fixed, fixedStep);
         bool changed = false;
         for (const auto& [col, qi] : boundedColumns_) {
-            if (fixed[static_cast<std::size_t>(col)]) continue;
+            const Eigen::Index k = observedIndex_[static_cast<std::size_t>(col)];
+            if (k < 0 || fixed[static_cast<std::size_t>(k)]) continue;
             const Coordinate& c = model_.getCoordinates()[static_cast<std::size_t>(qi)];
             const double value = q[qi];
-            const double next = value + delta[col];
+            const double next = value + step[k];
             if (next > c.rangeMax || next < c.rangeMin) {
-                fixed[static_cast<std::size_t>(col)] = true;
-                fixedStep[col] = (next > c.rangeMax ? c.rangeMax : c.rangeMin) - value;
+                fixed[static_cast<std::size_t>(k)] = true;
+                fixedStep[k] = (next > c.rangeMax ? c.rangeMax : c.rangeMin) - value;
                 changed = true;
             }
         }
         if (!changed) break;
+    }
+    Eigen::VectorXd delta = Eigen::VectorXd::Zero(numFree_);
+    delta(observed_) = step;
+    // An unobserved clamped coordinate outside its range (a default pose) goes to the range's end: nothing
+    // couples it to the rest.
+    for (const auto& [col, qi] : boundedColumns_) {
+        if (observedIndex_[static_cast<std::size_t>(col)] >= 0) continue;
+        const Coordinate& c = model_.getCoordinates()[static_cast<std::size_t>(qi)];
+        if (q[qi] > c.rangeMax) delta[col] = c.rangeMax - q[qi];
+        if (q[qi] < c.rangeMin) delta[col] = c.rangeMin - q[qi];
     }
     return delta;
 }

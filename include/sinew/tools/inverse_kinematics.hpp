@@ -112,7 +112,8 @@ private:
     // The damped, constrained Gauss-Newton step in the free unknowns from the last evaluation, clamped
     // coordinates kept within their ranges by an active set.
     Eigen::VectorXd solveStep(double damping, const Eigen::VectorXd& q);
-    // One pass of it, the entries `fixed` held at fixedStep.
+    void gatherObservedColumns();
+    // One pass of it over the observed unknowns, the entries `fixed` held at fixedStep.
     Eigen::VectorXd solveKkt(double damping, const std::vector<bool>& fixed, const Eigen::VectorXd& fixedStep);
 
     const Model& model_;
@@ -139,7 +140,11 @@ private:
     Eigen::MatrixXd curvature_;       // the Lagrangian's curvature beyond A^T A where last refreshed
     double curvatureResiduals_ = 0;   // |[r; multipliers]| there
     bool useCurvature_ = true;        // in this solve's steps
-    Eigen::MatrixXd stepHessian_;     // the step's: A^T A + curvature_ (free x free)
+    std::vector<Eigen::Index> observed_;       // the free unknowns a target or loop observes, at the last step
+    std::vector<Eigen::Index> observedIndex_;  // per free unknown: its place in observed_, or -1
+    Eigen::MatrixXd observedA_, observedG_;    // A_'s and G_'s columns of observed_
+    std::vector<Eigen::Index> loopColumns_;    // the free unknowns the loops move, while closing them
+    Eigen::MatrixXd stepHessian_;     // the step's: A^T A + curvature_ (observed x observed)
     Eigen::MatrixXd H_;               // stepHessian_ damped, with the active set's rows fixed
     Eigen::VectorXd lastQ_;  // q of the last evaluation, for the couplers' slopes
     Eigen::VectorXd markerErrors_;
