@@ -109,10 +109,11 @@ private:
     // A step in the free unknowns as speeds (nu): 0 for locked, coupled and virtual-link speeds.
     Eigen::VectorXd toSpeeds(const Eigen::VectorXd& delta) const;
     void closeLoops(Eigen::VectorXd& q);
+    // observed_, observedIndex_, observedA_ and observedG_ at the last evaluation.
+    void gatherObservedColumns();
     // The damped, constrained Gauss-Newton step in the free unknowns from the last evaluation, clamped
     // coordinates kept within their ranges by an active set.
     Eigen::VectorXd solveStep(double damping, const Eigen::VectorXd& q);
-    void gatherObservedColumns();
     // One pass of it over the observed unknowns, the entries `fixed` held at fixedStep.
     Eigen::VectorXd solveKkt(double damping, const std::vector<bool>& fixed, const Eigen::VectorXd& fixedStep);
 
