@@ -5,7 +5,6 @@
 #include <numeric>
 #include <set>
 
-#include "sinew/core/coordinate_coupler.hpp"
 #include "sinew/core/error.hpp"
 
 namespace sinew {
@@ -22,22 +21,20 @@ std::vector<int> without(const std::vector<int>& handles, int a, int b = -1) {
     return rest;
 }
 
-// Written as the list of what is handled, so that a joint type added to the model is refused here until the
-// dynamics learns it.
-bool isSupported(JointType type) {
-    return type == JointType::Free || type == JointType::Ball || type == JointType::Pin || type == JointType::Weld;
-}
-
 AssemblyJoint::Motion motionOf(JointType type) {
-    if (type == JointType::Free) return AssemblyJoint::Motion::Free;
-    if (type == JointType::Pin) return AssemblyJoint::Motion::Pin;
-    return AssemblyJoint::Motion::Ball;
+    switch (type) {
+        case JointType::Free: return AssemblyJoint::Motion::Free;
+        case JointType::Ball: return AssemblyJoint::Motion::Ball;
+        case JointType::Pin: return AssemblyJoint::Motion::Pin;
+        case JointType::Weld: return AssemblyJoint::Motion::Weld;
+        case JointType::Custom: return AssemblyJoint::Motion::Custom;
+    }
+    return AssemblyJoint::Motion::Weld;
 }
 
 }  // namespace
 
 AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) : kind_(kind) {
-    requireNoCouplers(model, "sinew's forward dynamics");
     if (kind == Kind::Automatic) {
         AssemblySchedule serial(model, Kind::Serial, hangLink);
         AssemblySchedule balanced(model, Kind::Balanced, hangLink);
@@ -179,10 +176,6 @@ void AssemblySchedule::buildBodies(const Model& model) {
             virtualLinks_.push_back(i);
             continue;
         }
-        if (!isSupported(joint.type))
-            throw Error("model '" + model.getName() + "': joint '" + joint.name + "' of link '" + link.name + "' is a " +
-                        toString(joint.type) +
-                        " joint; the assembly-disassembly forward dynamics handles free, ball, pin and weld joints");
         const int parentBody = joint.parent == kGround ? kGroundBody : linkBody_[static_cast<std::size_t>(joint.parent)];
         if (parentBody == kNoBody)
             throw Error("model '" + model.getName() + "': link '" + link.name + "' hangs from virtual link '" +

@@ -51,7 +51,7 @@ void calcCustomJointTransform(const Joint& joint, const double* q, Eigen::Matrix
     const AxisDisplacements d = calcAxisDisplacements(joint, q, 1);
     const Eigen::Matrix3d W = calcRotationAxes(joint, d.theta, &R_FM);
     p_FM.setZero();
-    H_FM.setZero();
+    H_FM.setZero(6, joint.nu);
     for (int k = 0; k < 6; ++k) {
         const TransformAxis& axis = joint.transformAxes[static_cast<std::size_t>(k)];
         if (k >= 3) p_FM += d.theta[k] * axis.axis;
@@ -61,26 +61,34 @@ void calcCustomJointTransform(const Joint& joint, const double* q, Eigen::Matrix
     }
 }
 
-// d/dt (W thetadot) = W thetaddot + Wdot thetadot with the column rates Wdot_1 = (a_0 thetadot_0) x W_1 and
-// Wdot_2 = (a_0 thetadot_0 + W_1 thetadot_1) x W_2; thetaddot's part without udot is f'' u_c^2.
-SpatialVector calcCustomJointBias(const Joint& joint, const double* q, const double* u) {
+// Hdot's column c: each axis k that coordinate c drives contributes f_k'' u_c W_k + f_k' Wdot_k (rotations)
+// or f_k'' u_c a_k (translations), with the column rates of W = [a_0, R_1 a_1, R_1 R_2 a_2]:
+// Wdot_0 = 0, Wdot_1 = (a_0 thetadot_0) x W_1, Wdot_2 = (a_0 thetadot_0 + W_1 thetadot_1) x W_2.
+void calcCustomJointHDot(const Joint& joint, const double* q, const double* u, JointMotion& HDot_FM) {
     const AxisDisplacements d = calcAxisDisplacements(joint, q, 2);
     const Eigen::Matrix3d W = calcRotationAxes(joint, d.theta, nullptr);
-    double thetaDot[6] = {};
-    SpatialVector bias = SpatialVector::Zero();
-    for (int k = 0; k < 6; ++k) {
-        const TransformAxis& axis = joint.transformAxes[static_cast<std::size_t>(k)];
-        if (axis.coordinate == kNoCoordinate) continue;
-        const double rate = u[axis.coordinate];
-        thetaDot[k] = d.slope[k] * rate;
-        const double thetaDDot = d.curvature[k] * rate * rate;
-        if (k < 3) bias.head<3>() += thetaDDot * W.col(k);
-        else bias.tail<3>() += thetaDDot * axis.axis;
+    double thetaDot[3] = {};
+    for (int k = 0; k < 3; ++k) {
+        const int c = joint.transformAxes[static_cast<std::size_t>(k)].coordinate;
+        if (c != kNoCoordinate) thetaDot[k] = d.slope[k] * u[c];
     }
     const Eigen::Vector3d w1 = thetaDot[0] * W.col(0);  // angular velocity of the frame after rotation 1
     const Eigen::Vector3d w2 = w1 + thetaDot[1] * W.col(1);
-    bias.head<3>() += w1.cross(W.col(1)) * thetaDot[1] + w2.cross(W.col(2)) * thetaDot[2];
-    return bias;
+    const Eigen::Vector3d WDot[3] = {Eigen::Vector3d::Zero(), w1.cross(W.col(1)), w2.cross(W.col(2))};
+    HDot_FM.setZero(6, joint.nu);
+    for (int k = 0; k < 6; ++k) {
+        const TransformAxis& axis = joint.transformAxes[static_cast<std::size_t>(k)];
+        const int c = axis.coordinate;
+        if (c == kNoCoordinate) continue;
+        if (k < 3) HDot_FM.col(c).head<3>() += d.curvature[k] * u[c] * W.col(k) + d.slope[k] * WDot[k];
+        else HDot_FM.col(c).tail<3>() += d.curvature[k] * u[c] * axis.axis;
+    }
+}
+
+SpatialVector calcCustomJointBias(const Joint& joint, const double* q, const double* u) {
+    JointMotion HDot_FM;
+    calcCustomJointHDot(joint, q, u, HDot_FM);
+    return HDot_FM * Eigen::Map<const Eigen::VectorXd>(u, joint.nu);
 }
 
 }  // namespace sinew

@@ -2,7 +2,10 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <cmath>
+
+#include "sinew/core/custom_joint.hpp"
 
 namespace sinew {
 namespace {
@@ -13,12 +16,21 @@ namespace {
 // the ground origin (docs/closed-chain.md, "Reference points").
 
 using Motion = AssemblyJoint::Motion;
+// A custom joint's n x n and n-vector quantities (n <= 6): fixed storage, no allocation.
+using JointSquare = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+using JointVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
 
 // A spatial force w about the joint centre with S^T w = tau: the joint's generalized forces as a force on
-// the child.
-SpatialVector calcJointForce(Motion motion, const Eigen::Matrix3d& R, const double* tau) {
+// the child. A custom joint's w = S (S^T S)^-1 tau; any force along its constraint basis T may be added, as
+// the joint carries those.
+SpatialVector calcJointForce(Motion motion, const Eigen::Matrix3d& R, const JointMotion& S, const double* tau) {
     SpatialVector w = SpatialVector::Zero();
     switch (motion) {
+        case Motion::Custom: {
+            const JointSquare StS = S.transpose() * S;
+            w = S * StS.llt().solve(Eigen::Map<const JointVector>(tau, S.cols()));
+            break;
+        }
         case Motion::Free:
             w.head<3>() = R * Eigen::Map<const Eigen::Vector3d>(tau);
             w.tail<3>() = R * Eigen::Map<const Eigen::Vector3d>(tau + 3);
@@ -31,9 +43,16 @@ SpatialVector calcJointForce(Motion motion, const Eigen::Matrix3d& R, const doub
 }
 
 // udot from the relative acceleration about the joint centre, a_beta - a_alpha - c = S udot, where S is
-// [R; 0] (ball), [z; 0] (pin) or [[R, 0], [0, R]] (free).
-void extractJointAcceleration(Motion motion, const Eigen::Matrix3d& R, const SpatialVector& relative, double* udot) {
+// [R; 0] (ball), [z; 0] (pin), [[R, 0], [0, R]] (free) or a custom joint's (least squares: exact for an
+// acceleration in S's span).
+void extractJointAcceleration(Motion motion, const Eigen::Matrix3d& R, const JointMotion& S, const SpatialVector& relative,
+                              double* udot) {
     switch (motion) {
+        case Motion::Custom: {
+            const JointSquare StS = S.transpose() * S;
+            Eigen::Map<JointVector>(udot, S.cols()) = StS.llt().solve(S.transpose() * relative);
+            break;
+        }
         case Motion::Free:
             Eigen::Map<Eigen::Vector3d>{udot} = R.transpose() * relative.head<3>();
             Eigen::Map<Eigen::Vector3d>{udot + 3} = R.transpose() * relative.tail<3>();
@@ -85,55 +104,66 @@ Matrix6d invertInertia(const Matrix6d& I) {
     return G;
 }
 
-// Products with a constraint-force basis T (6 x K): T^T W T, P T and T E T^T. K = 3 is always the ball's
-// T = [0; 1] (ball joints and loops), which only picks rows and columns.
+// Constraint-force bases T (6 x K, T^T S = 0) about a joint's centre. A ball (or ball loop) transmits forces
+// through its centre, T = [0; 1], which only picks rows and columns: its own type, so that the products
+// below take that shortcut. The others are matrices: a pin's, a custom joint's, the hang's identity.
+struct BallBasis {};
+
+template <typename Basis>
+constexpr int kColumnsOf = Basis::ColsAtCompileTime;
+template <>
+constexpr int kColumnsOf<BallBasis> = 3;
+
+template <typename Basis>
+using Square = Eigen::Matrix<double, kColumnsOf<Basis>, kColumnsOf<Basis>>;
+
+// Products with T: T^T W T, P T and T E T^T.
+Eigen::Matrix3d projectOnBasis(const BallBasis&, const Matrix6d& W) { return W.bottomRightCorner<3, 3>(); }
 template <int K>
 Eigen::Matrix<double, K, K> projectOnBasis(const Eigen::Matrix<double, 6, K>& T, const Matrix6d& W) {
-    if constexpr (K == 3) return W.bottomRightCorner<3, 3>();
-    else return T.transpose() * W * T;
+    return T.transpose() * W * T;
 }
 
+Eigen::Matrix<double, 6, 3> timesBasis(const Matrix6d& P, const BallBasis&) { return P.rightCols<3>(); }
 template <int K>
 Eigen::Matrix<double, 6, K> timesBasis(const Matrix6d& P, const Eigen::Matrix<double, 6, K>& T) {
-    if constexpr (K == 3) return P.rightCols<3>();
-    else return P * T;
+    return P * T;
 }
 
+Matrix6d expandFromBasis(const BallBasis&, const Eigen::Matrix3d& E) {
+    Matrix6d Y = Matrix6d::Zero();
+    Y.bottomRightCorner<3, 3>() = E;
+    return Y;
+}
 template <int K>
 Matrix6d expandFromBasis(const Eigen::Matrix<double, 6, K>& T, const Eigen::Matrix<double, K, K>& E) {
-    if constexpr (K == 3) {
-        Matrix6d Y = Matrix6d::Zero();
-        Y.bottomRightCorner<3, 3>() = E;
-        return Y;
-    } else {
-        return T * E * T.transpose();
-    }
+    return T * E * T.transpose();
 }
 
 // E = (T^T W T)^-1 for a tree joint. Never singular: of the two subassemblies it joins, at least one
 // moves freely.
-template <int K>
-Eigen::Matrix<double, K, K> calcJointCompliance(const Eigen::Matrix<double, 6, K>& T, const Matrix6d& W) {
-    const Eigen::Matrix<double, K, K> D = projectOnBasis<K>(T, W);
+template <typename Basis>
+Square<Basis> calcJointCompliance(const Basis& T, const Matrix6d& W) {
+    constexpr int K = kColumnsOf<Basis>;
+    const Square<Basis> D = projectOnBasis(T, W);
     if constexpr (K <= 4) return D.inverse();  // Eigen's closed form, well conditioned for an SPD D this small
-    else return D.llt().solve(Eigen::Matrix<double, K, K>::Identity());
+    else return D.llt().solve(Square<Basis>::Identity());
 }
 
 // E = (T^T W T)^+ for a closure with K constraint directions (a ball loop, 3; the hang weld, 6). D is
 // singular when the closure repeats constraints the subassembly already has (a ball loop off the axis of a
 // hinge...); its pseudo-inverse then gives the least-squares (minimum-norm) force and exact accelerations.
 // Counts the redundant directions; `conditioning` gets the smallest kept eigenvalue over the largest.
-template <int K>
-Eigen::Matrix<double, K, K> calcClosureCompliance(const Eigen::Matrix<double, 6, K>& T, const Matrix6d& W,
-                                                  int& redundant, double& conditioning) {
-    using Square = Eigen::Matrix<double, K, K>;
-    const Square D = projectOnBasis<K>(T, W);
-    const Eigen::SelfAdjointEigenSolver<Square> eigen(D);
+template <typename Basis>
+Square<Basis> calcClosureCompliance(const Basis& T, const Matrix6d& W, int& redundant, double& conditioning) {
+    constexpr int K = kColumnsOf<Basis>;
+    const Square<Basis> D = projectOnBasis(T, W);
+    const Eigen::SelfAdjointEigenSolver<Square<Basis>> eigen(D);
     const auto& values = eigen.eigenvalues();
     // Roundoff in the subassembly's Phi (differences of inverse inertias) leaves a redundant direction at
     // about 1e-15 of the largest eigenvalue; genuine directions of real models sit far above 1e-9.
     const double largest = values.cwiseAbs().maxCoeff();
-    Square pseudoInverse = Square::Zero();
+    Square<Basis> pseudoInverse = Square<Basis>::Zero();
     redundant = 0;
     conditioning = 1;
     for (int i = 0; i < K; ++i) {
@@ -147,20 +177,29 @@ Eigen::Matrix<double, K, K> calcClosureCompliance(const Eigen::Matrix<double, 6,
     return pseudoInverse;
 }
 
-// Constraint-force bases T (T^T S = 0) about a joint's centre: a ball (or ball loop) transmits forces
-// through its centre; a pin also moments about the two axes normal to it (R's x and y).
-Eigen::Matrix<double, 6, 3> ballBasis() {
-    Eigen::Matrix<double, 6, 3> T = Eigen::Matrix<double, 6, 3>::Zero();
-    T.bottomRows<3>().setIdentity();
-    return T;
-}
-
+// A pin transmits forces through its centre and moments about the two axes normal to it (R's x and y).
 Eigen::Matrix<double, 6, 5> pinBasis(const Eigen::Matrix3d& R) {
     Eigen::Matrix<double, 6, 5> T = Eigen::Matrix<double, 6, 5>::Zero();
     T.bottomLeftCorner<3, 3>().setIdentity();
     T.block<3, 1>(0, 3) = R.col(0);
     T.block<3, 1>(0, 4) = R.col(1);
     return T;
+}
+
+// The constraint-force basis of a custom joint: the orthogonal complement of its S (n columns), the last
+// 6 - n columns of Q in S = QR, so T^T S = 0. Calls f with it as a 6 x (6 - n) fixed-size matrix.
+template <typename F>
+void withCustomBasis(const JointMotion& S, F&& f) {
+    const Eigen::HouseholderQR<JointMotion> qr(S);
+    const Matrix6d Q = qr.householderQ();
+    switch (S.cols()) {
+        case 1: f(Eigen::Matrix<double, 6, 5>(Q.rightCols<5>())); break;
+        case 2: f(Eigen::Matrix<double, 6, 4>(Q.rightCols<4>())); break;
+        case 3: f(Eigen::Matrix<double, 6, 3>(Q.rightCols<3>())); break;
+        case 4: f(Eigen::Matrix<double, 6, 2>(Q.rightCols<2>())); break;
+        case 5: f(Eigen::Matrix<double, 6, 1>(Q.rightCols<1>())); break;
+        default: f(Eigen::Matrix<double, 6, 0>()); break;
+    }
 }
 
 // Bodies, assembly joints, operations, subassemblies, handles and links are numbered by int, as the
@@ -191,6 +230,9 @@ struct Evaluation {
     const Eigen::VectorXd& tau;
     const std::vector<SpatialVector>& linkForces;
     ForwardDynamicsData& fd;
+    // The mass matrix's part alone: no velocity terms, gravity or link forces, so udot = A tau with A the
+    // loop-constrained inverse inertia (the couplers' responses).
+    bool inertialOnly = false;
 
     const AssemblyJoint& joint(int j) const { return at(schedule.getJoints(), j); }
     const AssemblyOperation& operation(int o) const { return at(schedule.getOperations(), o); }
@@ -201,6 +243,11 @@ struct Evaluation {
     // The orientation of a tree joint's F frame in ground.
     const Eigen::Matrix3d& R_GF(const AssemblyJoint& aj) const { return at(data.R_GF, aj.index); }
     const double* jointTau(const AssemblyJoint& aj) const { return tau.data() + model.getJoint(aj.index).uStart; }
+    const JointMotion& S(int j) const { return at(fd.jointMotion, j); }
+    SpatialVector jointForce(int j) const {
+        const AssemblyJoint& aj = joint(j);
+        return calcJointForce(aj.motion, R_GF(aj), S(j), jointTau(aj));
+    }
     double* jointUdot(const AssemblyJoint& aj) const { return fd.udot.data() + model.getJoint(aj.index).uStart; }
     // The spatial forces on handles 2j (alpha) and 2j + 1 (beta) of joint j.
     SpatialVector& alphaForce(int j) const { return at(fd.handleForce, 2 * j); }
@@ -239,11 +286,14 @@ struct Evaluation {
         const Eigen::Vector3d& o = at(fd.jointPoint, b);
         const Eigen::Vector3d& w = at(data.w_GB, first);
         const Eigen::Vector3d vc = at(data.v_GB, first) + w.cross(c - at(data.p_GB, first));
-        SpatialVector biasAtCom;
-        biasAtCom.head<3>() = w.cross(Ic * w);
-        biasAtCom.tail<3>() = body.mass * (w.cross(vc) - model.getGravity());
-        SpatialVector bias = shiftForce(biasAtCom, o - c);
-        for (int link : body.links) bias -= shiftForce(at(linkForces, link), o - at(data.p_GB, link));
+        SpatialVector bias = SpatialVector::Zero();
+        if (!inertialOnly) {
+            SpatialVector biasAtCom;
+            biasAtCom.head<3>() = w.cross(Ic * w);
+            biasAtCom.tail<3>() = body.mass * (w.cross(vc) - model.getGravity());
+            bias = shiftForce(biasAtCom, o - c);
+            for (int link : body.links) bias -= shiftForce(at(linkForces, link), o - at(data.p_GB, link));
+        }
         at(fd.articulatedBias, b) = bias;
         SpatialVector& v = at(fd.velocity, b);
         v.head<3>() = w;
@@ -259,16 +309,37 @@ struct Evaluation {
     }
 
     // Relative motion S u = v_beta - v_alpha about the joint point and its bias c = dS/dt u = v_alpha x (S u),
-    // plus, for a free joint, (R v_FM) x (R w_FM): its centre moves in the parent (docs/closed-chain.md,
-    // "Joints").
+    // plus, for a free or custom joint, (R v_FM) x (R w_FM): its centre moves in the parent; plus, for a
+    // custom joint, R Hdot u, its subspace's own rate in F (docs/closed-chain.md, "Joints"). A custom
+    // joint's S = [R 0; 0 R] H_FM.
     void prepareJoint(int j) const {
         const AssemblyJoint& aj = joint(j);
+        const Eigen::Matrix3d* R = aj.kind == AssemblyJoint::Kind::Tree ? &R_GF(aj) : nullptr;
+        if (aj.motion == Motion::Custom) {
+            const JointMotion& H = at(data.H_FM, aj.index);
+            JointMotion& Sj = at(fd.jointMotion, j);
+            Sj.resize(6, H.cols());
+            Sj.topRows<3>() = *R * H.topRows<3>();
+            Sj.bottomRows<3>() = *R * H.bottomRows<3>();
+        }
+        SpatialVector& c = at(fd.jointBias, j);
+        if (inertialOnly) {
+            c.setZero();
+            return;
+        }
         const Eigen::Vector3d& p = at(fd.jointPoint, j);
         const SpatialVector vAlpha = motionAt(fd.velocity, aj.alphaBody, p);
         const SpatialVector relative = motionAt(fd.velocity, aj.betaBody, p) - vAlpha;
-        SpatialVector& c = at(fd.jointBias, j);
         c = crossMotion(vAlpha, relative);
-        if (aj.motion == Motion::Free) c.tail<3>() += relative.tail<3>().cross(relative.head<3>());
+        if (aj.motion == Motion::Free || aj.motion == Motion::Custom)
+            c.tail<3>() += relative.tail<3>().cross(relative.head<3>());
+        if (aj.motion == Motion::Custom) {
+            const Joint& tree = model.getJoint(aj.index);
+            const SpatialVector bias_F =
+                calcCustomJointBias(tree, data.q.data() + tree.qStart, data.u.data() + tree.uStart);
+            c.head<3>() += *R * bias_F.head<3>();
+            c.tail<3>() += *R * bias_F.tail<3>();
+        }
     }
 
     // Absorb (docs/closed-chain.md, "Absorb"): the child body's articulated inertia I and bias p about the
@@ -282,7 +353,7 @@ struct Evaluation {
         const Eigen::Matrix3d& R = R_GF(aj);
         const double* tauJ = jointTau(aj);
         const SpatialVector& c = at(fd.jointBias, j);
-        SpatialVector pa = calcJointForce(aj.motion, R, tauJ);
+        SpatialVector pa = jointForce(j);
         // The parent's inertia, or none for ground; d: from the parent's point to the joint centre.
         const int parent = aj.alphaBody == kGroundBody ? 0 : aj.alphaBody;
         Matrix6d* parentInertia = aj.alphaBody == kGroundBody ? nullptr : &at(fd.articulatedInertia, parent);
@@ -310,6 +381,16 @@ struct Evaluation {
                 const Matrix6d Ia = I - U * U.transpose() / D;
                 pa = p + Ia * c + U * ((tauJ[0] - z.dot(p.head<3>())) / D);
                 if (parentInertia) addShiftedInertia(*parentInertia, Ia, d);
+                break;
+            }
+            case Motion::Custom: {
+                const JointMotion& Sj = S(j);
+                const JointMotion U = I * Sj;
+                const Eigen::LLT<JointSquare> D(Sj.transpose() * U);
+                const JointVector rest = Eigen::Map<const JointVector>(tauJ, Sj.cols()) - Sj.transpose() * p;
+                const Matrix6d Ia = I - U * D.solve(U.transpose());
+                pa = p + Ia * c + U * D.solve(rest);
+                if (parentInertia) addShiftedInertia(*parentInertia, 0.5 * (Ia + Ia.transpose()), d);
                 break;
             }
             case Motion::Free: break;  // S invertible: Ia = 0 and pa = the joint force
@@ -340,11 +421,20 @@ struct Evaluation {
                 a.head<3>() += z * ((tauJ[0] - z.dot(p.head<3>()) - U.dot(a)) / z.dot(U.head<3>()));
                 break;
             }
-            case Motion::Free: a = I.llt().solve(calcJointForce(aj.motion, R, tauJ) - p); break;
+            case Motion::Free: a = I.llt().solve(jointForce(j) - p); break;
+            case Motion::Custom: {
+                const JointMotion& Sj = S(j);
+                const JointMotion U = I * Sj;
+                const Eigen::LLT<JointSquare> D(Sj.transpose() * U);
+                Eigen::Map<JointVector> udot(jointUdot(aj), Sj.cols());
+                udot = D.solve(Eigen::Map<const JointVector>(tauJ, Sj.cols()) - Sj.transpose() * p - U.transpose() * base);
+                at(fd.bodyAcceleration, aj.betaBody) = base + Sj * udot;
+                return;
+            }
             case Motion::Weld: break;
         }
         at(fd.bodyAcceleration, aj.betaBody) = a;
-        extractJointAcceleration(aj.motion, R, a - base, jointUdot(aj));
+        extractJointAcceleration(aj.motion, R, S(j), a - base, jointUdot(aj));
     }
 
     // AbsorbSubassembly: the child's subassembly has one handle, the joint's beta, with a_beta = W f + b.
@@ -355,22 +445,13 @@ struct Evaluation {
         const AssemblyJoint& aj = joint(op.joint);
         const HandleEquations child = handleEquations(op.first);
         const Matrix6d& W = child.Phi(0, 0);
-        const Eigen::Matrix3d& R = R_GF(aj);
-        const SpatialVector force = calcJointForce(aj.motion, R, jointTau(aj));
-        switch (aj.motion) {
-            case Motion::Ball:
-                setJointTerms<3>(o, ballBasis(), calcJointCompliance<3>(ballBasis(), W), W, force, child.b(0));
-                break;
-            case Motion::Pin: {
-                const Eigen::Matrix<double, 6, 5> T = pinBasis(R);
-                setJointTerms<5>(o, T, calcJointCompliance<5>(T, W), W, force, child.b(0));
-                break;
-            }
-            case Motion::Free:
-                setJointTerms<0>(o, Eigen::Matrix<double, 6, 0>(), Eigen::Matrix<double, 0, 0>(), W, force, child.b(0));
-                break;
-            case Motion::Weld: break;
-        }
+        const SpatialVector force = jointForce(op.joint);
+        withJointBasis(op.joint, [&](const auto& T) {
+            using Basis = std::decay_t<decltype(T)>;
+            Square<Basis> E;
+            if constexpr (kColumnsOf<Basis> > 0) E = calcJointCompliance(T, W);
+            setJointTerms(o, T, E, W, force, child.b(0));
+        });
         if (aj.alphaBody == kGroundBody) return;
         const int parent = aj.alphaBody;
         const Eigen::Vector3d d = at(fd.jointPoint, op.joint) - at(fd.jointPoint, parent);
@@ -426,27 +507,34 @@ struct Evaluation {
     // rank K (the joint's constraint directions), so each block update Phi_ha Y Phi_ak is done as
     // (Phi_ha T) E (Phi_ka T)^T: for a ball joint T selects the force rows and the update costs half.
     void join(int o) const {
-        const AssemblyJoint& aj = joint(operation(o).joint);
-        const Eigen::Matrix3d& R = R_GF(aj);
-        const SpatialVector force = calcJointForce(aj.motion, R, jointTau(aj));
+        const SpatialVector force = jointForce(operation(o).joint);
+        withJointBasis(operation(o).joint, [&](const auto& T) { joinThrough(o, T, force); });
+    }
+
+    // Calls f with tree joint j's constraint-force basis T (of its own type: see BallBasis).
+    template <typename F>
+    void withJointBasis(int j, F&& f) const {
+        const AssemblyJoint& aj = joint(j);
         switch (aj.motion) {
-            case Motion::Ball: joinThrough<3>(o, ballBasis(), force); break;
-            case Motion::Pin: joinThrough<5>(o, pinBasis(R), force); break;
-            case Motion::Free: joinThrough<0>(o, Eigen::Matrix<double, 6, 0>(), force); break;
+            case Motion::Ball: f(BallBasis{}); break;
+            case Motion::Pin: f(pinBasis(R_GF(aj))); break;
+            case Motion::Free: f(Eigen::Matrix<double, 6, 0>()); break;
+            case Motion::Custom: withCustomBasis(S(j), f); break;
             case Motion::Weld: break;  // welded links share a body: never a tree joint
         }
     }
 
-    template <int K>
-    void joinThrough(int o, const Eigen::Matrix<double, 6, K>& T, const SpatialVector& force) const {
+    template <typename Basis>
+    void joinThrough(int o, const Basis& T, const SpatialVector& force) const {
+        constexpr int K = kColumnsOf<Basis>;
         const AssemblyOperation& op = operation(o);
         const HandleEquations A = handleEquations(op.first), B = handleEquations(op.second);
         const HandleEquations C = handleEquations(op.result);
         const int ia = op.alphaPosition, ib = op.betaPosition;
         const Matrix6d W = A.Phi(ia, ia) + B.Phi(ib, ib);
-        Eigen::Matrix<double, K, K> E;
-        if constexpr (K > 0) E = calcJointCompliance<K>(T, W);
-        setJointTerms<K>(o, T, E, W, force, B.b(ib) - A.b(ia));
+        Square<Basis> E;
+        if constexpr (K > 0) E = calcJointCompliance(T, W);
+        setJointTerms(o, T, E, W, force, B.b(ib) - A.b(ia));
         const SpatialVector& g = at(fd.g, o);
         // C's handles: A's but alpha, then B's but beta. fromA(c), and the handle in A or B it is.
         auto fromA = [&](int c) { return c < A.numHandles - 1; };
@@ -458,7 +546,7 @@ struct Evaluation {
         for (int c = 0; c < C.numHandles; ++c) {
             const int h = source(c);
             const Matrix6d& P = fromA(c) ? A.Phi(h, ia) : B.Phi(h, ib);
-            at(U, c).leftCols<K>() = timesBasis<K>(P, T);
+            at(U, c).leftCols<K>() = timesBasis(P, T);
             at(UE, c).leftCols<K>() = at(U, c).leftCols<K>() * E;
             C.b(c) = fromA(c) ? SpatialVector(A.b(h) - P * g) : SpatialVector(B.b(h) + P * g);
         }
@@ -480,28 +568,29 @@ struct Evaluation {
     // Close (docs/closed-chain.md, "Close"): a loop (or the hang) whose two handles are both in A. With
     // Delta_h = Phi_h,beta - Phi_h,alpha, the update Delta_h Y Delta_k^T is done as (Delta_h T) E (Delta_k T)^T.
     void close(int o) const {
-        if (joint(operation(o).joint).kind == AssemblyJoint::Kind::Loop) closeThrough<3>(o, ballBasis());
-        else closeThrough<6>(o, Matrix6d::Identity());
+        if (joint(operation(o).joint).kind == AssemblyJoint::Kind::Loop) closeThrough(o, BallBasis{});
+        else closeThrough(o, Matrix6d::Identity().eval());
     }
 
-    template <int K>
-    void closeThrough(int o, const Eigen::Matrix<double, 6, K>& T) const {
+    template <typename Basis>
+    void closeThrough(int o, const Basis& T) const {
+        constexpr int K = kColumnsOf<Basis>;
         const AssemblyOperation& op = operation(o);
         const HandleEquations A = handleEquations(op.first), C = handleEquations(op.result);
         const int ia = op.alphaPosition, ib = op.betaPosition;
         // The c-th remaining handle of A.
         auto handleAt = [&](int c) { return c + (c >= std::min(ia, ib) ? 1 : 0) + (c + 1 >= std::max(ia, ib) ? 1 : 0); };
         const Matrix6d W = A.Phi(ia, ia) + A.Phi(ib, ib) - A.Phi(ia, ib) - A.Phi(ib, ia);
-        const Eigen::Matrix<double, K, K> E =
-            calcClosureCompliance<K>(T, W, at(fd.operationRedundancy, o), at(fd.operationConditioning, o));
-        setJointTerms<K>(o, T, E, W, SpatialVector::Zero(), A.b(ib) - A.b(ia));
+        const Square<Basis> E =
+            calcClosureCompliance(T, W, at(fd.operationRedundancy, o), at(fd.operationConditioning, o));
+        setJointTerms(o, T, E, W, SpatialVector::Zero(), A.b(ib) - A.b(ia));
         const SpatialVector& g = at(fd.g, o);
         std::vector<Matrix6d>& U = at(fd.scratchU, o);
         std::vector<Matrix6d>& UE = at(fd.scratchUE, o);
         for (int c = 0; c < C.numHandles; ++c) {
             const int h = handleAt(c);
             const Matrix6d delta = A.Phi(h, ib) - A.Phi(h, ia);
-            at(U, c).leftCols<K>() = timesBasis<K>(delta, T);
+            at(U, c).leftCols<K>() = timesBasis(delta, T);
             at(UE, c).leftCols<K>() = at(U, c).leftCols<K>() * E;
             C.b(c) = A.b(h) + delta * g;
         }
@@ -516,13 +605,13 @@ struct Evaluation {
     }
 
     // Y = T E T^T and g = (1 - Y W) w - Y (b_beta - b_alpha - c) of operation o.
-    template <int K>
-    void setJointTerms(int o, const Eigen::Matrix<double, 6, K>& T, const Eigen::Matrix<double, K, K>& E,
-                       const Matrix6d& W, const SpatialVector& force, const SpatialVector& bDifference) const {
+    template <typename Basis>
+    void setJointTerms(int o, const Basis& T, const Square<Basis>& E, const Matrix6d& W, const SpatialVector& force,
+                       const SpatialVector& bDifference) const {
         const SpatialVector& c = at(fd.jointBias, operation(o).joint);
         Matrix6d& Y = at(fd.Y, o);
-        if constexpr (K == 0) Y.setZero();
-        else Y = expandFromBasis<K>(T, E);
+        if constexpr (kColumnsOf<Basis> == 0) Y.setZero();
+        else Y = expandFromBasis(T, E);
         at(fd.g, o) = force - Y * (W * force + bDifference - c);
     }
 
@@ -569,7 +658,7 @@ struct Evaluation {
             case AssemblyJoint::Kind::Tree: {
                 if (schedule.getTreeJointOperation(j) == AssemblyOperation::Kind::Absorb) break;
                 const Eigen::Vector3d& p = at(fd.jointPoint, j);
-                extractJointAcceleration(aj.motion, R_GF(aj),
+                extractJointAcceleration(aj.motion, R_GF(aj), S(j),
                                          motionAt(fd.bodyAcceleration, aj.betaBody, p) -
                                              motionAt(fd.bodyAcceleration, aj.alphaBody, p) - at(fd.jointBias, j),
                                          jointUdot(aj));
@@ -589,6 +678,7 @@ ForwardDynamicsData::ForwardDynamicsData(const Model& model, const AssemblySched
     const std::size_t operations = schedule.getOperations().size();
     jointPoint.assign(joints, Eigen::Vector3d::Zero());
     jointBias.assign(joints, SpatialVector::Zero());
+    jointMotion.assign(joints, JointMotion(6, 0));
     velocity.assign(bodies, SpatialVector::Zero());
     articulatedInertia.assign(bodies, Matrix6d::Zero());
     articulatedBias.assign(bodies, SpatialVector::Zero());
@@ -618,6 +708,15 @@ ForwardDynamicsData::ForwardDynamicsData(const Model& model, const AssemblySched
     udot = Eigen::VectorXd::Zero(model.getNumU());
     bodyAcceleration.assign(bodies, SpatialVector::Zero());
     loopForce.assign(static_cast<std::size_t>(model.getNumLoops()), Eigen::Vector3d::Zero());
+    const int couplers = model.getNumCouplers();
+    couplerSlope = Eigen::VectorXd::Zero(couplers);
+    couplerResponse = Eigen::MatrixXd::Zero(model.getNumU(), couplers);
+    couplerMatrix = Eigen::MatrixXd::Zero(couplers, couplers);
+    couplerSolver = Eigen::LDLT<Eigen::MatrixXd>(couplers);
+    freeUdot = Eigen::VectorXd::Zero(model.getNumU());
+    couplerRhs = Eigen::VectorXd::Zero(couplers);
+    couplerTau = Eigen::VectorXd::Zero(model.getNumU());
+    couplerForce = Eigen::VectorXd::Zero(couplers);
 }
 
 namespace {
@@ -659,12 +758,8 @@ void runStages(const Evaluation& e, ForEach&& forEach) {
     forEach(0, numJoints, [&](int j) { e.finishJoint(j); });
 }
 
-}  // namespace
-
-void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, const Data& data,
-                         const Eigen::VectorXd& tau, const std::vector<SpatialVector>& linkForces,
-                         ForwardDynamicsData& fd, int threads) {
-    const Evaluation e{model, schedule, data, tau, linkForces, fd};
+// One evaluation of every stage, alone or on `threads` threads.
+void runEvaluation(const Evaluation& e, int threads) {
     if (threads <= 1) {
         // Plain loops: even a one-thread OpenMP team pays for every worksharing barrier.
         runStages(e, [](int begin, int end, const auto& f) {
@@ -679,6 +774,59 @@ void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, c
             for (int i = begin; i < end; ++i) f(i);
         });
     }
+}
+
+// Coupler k ties q_dep = s f(q_ind): its velocity row G_k = e_dep - s f'(q_ind) e_ind (qdot = u for both),
+// and G_k udot = s f''(q_ind) u_ind^2. udot is linear in tau: udot = udot_free + A G^T lambda, with A G_k^T
+// from a pass with tau = G_k^T and no velocity terms, gravity or applied forces. Solving the m x m system
+// G A G^T lambda = rhs - G udot_free gives the multipliers; a last pass with tau + G^T lambda then leaves
+// every output (udot, accelerations, loop and handle forces) consistent with them.
+void enforceCouplers(const Evaluation& free, int threads) {
+    const Model& model = free.model;
+    const Data& data = free.data;
+    ForwardDynamicsData& fd = free.fd;
+    const std::vector<CoordinateCoupler>& couplers = model.getCouplers();
+    const int m = static_cast<int>(couplers.size());
+    fd.freeUdot = fd.udot;
+    for (int k = 0; k < m; ++k) {
+        const CoordinateCoupler& c = at(couplers, k);
+        fd.couplerSlope[k] = c.scaleFactor * c.function.calcDerivative(data.q[c.independentQ], 1);
+        fd.couplerTau.setZero();
+        fd.couplerTau[c.dependentU] = 1;
+        fd.couplerTau[c.independentU] -= fd.couplerSlope[k];
+        Evaluation response{model, free.schedule, data, fd.couplerTau, free.linkForces, fd};
+        response.inertialOnly = true;
+        runEvaluation(response, threads);
+        fd.couplerResponse.col(k) = fd.udot;
+    }
+    for (int k = 0; k < m; ++k) {
+        const CoordinateCoupler& c = at(couplers, k);
+        fd.couplerMatrix.row(k) = fd.couplerResponse.row(c.dependentU) - fd.couplerSlope[k] * fd.couplerResponse.row(c.independentU);
+        const double rate = data.u[c.independentU];
+        fd.couplerRhs[k] = c.scaleFactor * c.function.calcDerivative(data.q[c.independentQ], 2) * rate * rate -
+                           (fd.freeUdot[c.dependentU] - fd.couplerSlope[k] * fd.freeUdot[c.independentU]);
+    }
+    // G A G^T is symmetric (A is); kept exactly so for the factorisation.
+    fd.couplerMatrix = 0.5 * (fd.couplerMatrix + fd.couplerMatrix.transpose()).eval();
+    fd.couplerSolver.compute(fd.couplerMatrix);
+    fd.couplerForce = fd.couplerSolver.solve(fd.couplerRhs);
+    fd.couplerTau = free.tau;
+    for (int k = 0; k < m; ++k) {
+        const CoordinateCoupler& c = at(couplers, k);
+        fd.couplerTau[c.dependentU] += fd.couplerForce[k];
+        fd.couplerTau[c.independentU] -= fd.couplerSlope[k] * fd.couplerForce[k];
+    }
+    runEvaluation({model, free.schedule, data, fd.couplerTau, free.linkForces, fd}, threads);
+}
+
+}  // namespace
+
+void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, const Data& data,
+                         const Eigen::VectorXd& tau, const std::vector<SpatialVector>& linkForces,
+                         ForwardDynamicsData& fd, int threads) {
+    const Evaluation e{model, schedule, data, tau, linkForces, fd};
+    runEvaluation(e, threads);
+    if (model.getNumCouplers() > 0) enforceCouplers(e, threads);
     // Virtual links take no part (their quasi-static treatment drives them).
     for (int link : schedule.getVirtualLinks()) {
         const Joint& joint = model.getJoint(link);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "sinew/core/assembly_schedule.hpp"
+#include "sinew/core/coordinate_coupler.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/forward_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
@@ -267,11 +268,13 @@ private:
     Eigen::VectorXd dense_[4];    // dense output coefficients of the last trial step (nq + nu each)
 };
 
-// The loop and hang velocity constraints G u = 0, one row block per loop (relative velocity of the two loop
-// points, 3 rows) and for the hang (the hung link's angular velocity and origin velocity, 6 rows), built
-// column by column from unit speeds. Needs calcPositionKinematics in `data`.
+// The loop, coupler and hang velocity constraints G u = 0, one row block per loop (relative velocity of the
+// two loop points, 3 rows), a row per coupler (u_dep - s f'(q_ind) u_ind) and for the hang (the hung link's
+// angular velocity and origin velocity, 6 rows), built column by column from unit speeds. Needs
+// calcPositionKinematics in `data`.
 Eigen::MatrixXd calcVelocityConstraintMatrix(const Model& model, Data& data, int hangLink) {
-    const int rows = 3 * model.getNumLoops() + (hangLink >= 0 ? 6 : 0);
+    const int loopRows = 3 * model.getNumLoops();
+    const int rows = loopRows + model.getNumCouplers() + (hangLink >= 0 ? 6 : 0);
     Eigen::MatrixXd G(rows, model.getNumU());
     Eigen::VectorXd unit = Eigen::VectorXd::Zero(model.getNumU());
     auto pointVelocity = [&](int link, const Eigen::Vector3d& p_B) {
@@ -285,6 +288,11 @@ Eigen::MatrixXd calcVelocityConstraintMatrix(const Model& model, Data& data, int
         for (int k = 0; k < model.getNumLoops(); ++k) {
             const Loop& loop = model.getLoop(k);
             G.block<3, 1>(3 * k, j) = pointVelocity(loop.linkA, loop.p_A) - pointVelocity(loop.linkB, loop.p_B);
+        }
+        for (int k = 0; k < model.getNumCouplers(); ++k) {
+            const CoordinateCoupler& c = model.getCouplers()[static_cast<std::size_t>(k)];
+            G(loopRows + k, j) = (j == c.dependentU ? 1.0 : 0.0) -
+                                 (j == c.independentU ? c.scaleFactor * c.function.calcDerivative(data.q[c.independentQ], 1) : 0.0);
         }
         if (hangLink >= 0) {
             const std::size_t h = static_cast<std::size_t>(hangLink);
@@ -343,6 +351,8 @@ double calcConstraintViolation(const Model& model, Data& data, const Eigen::Vect
         const Eigen::Vector3d p_GB = data.p_GB[b] + data.R_GB[b] * loop.p_B;
         worst = std::max(worst, (p_GA - p_GB).norm());
     }
+    for (const CoordinateCoupler& c : model.getCouplers())
+        worst = std::max(worst, std::abs(q[c.dependentQ] - c.scaleFactor * c.function.calcValue(q[c.independentQ])));
     if (hangLink >= 0) worst = std::max(worst, (data.p_GB[static_cast<std::size_t>(hangLink)] - p_GH).norm());
     return worst;
 }
@@ -399,9 +409,10 @@ public:
     // assemble them) and where the hung link is welded; speeds projected onto the velocity constraints.
     void setInitialState() {
         y_.head(nq_) = model_.getDefaultQ();
-        calcPositionKinematics(model_, data_, model_.getDefaultQ());
+        applyCoordinateCouplers(model_, y_.head(nq_));
+        calcPositionKinematics(model_, data_, y_.head(nq_));
         p_GH_ = hangLink_ >= 0 ? data_.p_GB[static_cast<std::size_t>(hangLink_)] : Eigen::Vector3d::Zero();
-        const double initialGap = calcConstraintViolation(model_, data_, model_.getDefaultQ(), hangLink_, p_GH_);
+        const double initialGap = calcConstraintViolation(model_, data_, y_.head(nq_), hangLink_, p_GH_);
         if (initialGap > options_.accuracy)
             throw Error("model '" + model_.getName() + "': the loops are open by up to " + std::to_string(initialGap) +
                         " m at the default pose; sinew's engine does not assemble loops (Simbody's does)");

@@ -6,6 +6,7 @@
 #include "sinew/core/data.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/kinematics.hpp"
+#include "sinew/plugin/coupler_constraint.hpp"
 #include "sinew/plugin/custom_mobilizer.hpp"
 
 namespace sinew {
@@ -66,7 +67,9 @@ SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
             case JointType::Ball: index = SimTK::MobilizedBody::Ball(parent, X_PF, body, X_BM).getMobilizedBodyIndex(); break;
             case JointType::Pin: index = SimTK::MobilizedBody::Pin(parent, X_PF, body, X_BM).getMobilizedBodyIndex(); break;
             case JointType::Weld: index = SimTK::MobilizedBody::Weld(parent, X_PF, body, X_BM).getMobilizedBodyIndex(); break;
-            case JointType::Custom: index = addCustomMobilizer(parent, X_PF, body, X_BM, joint); break;
+            case JointType::Custom:
+                index = addCustomMobilizer(parent, X_PF, body, X_BM, joint, options.customJoints);
+                break;
         }
         mobilizedBodies_.push_back(index);
     }
@@ -78,6 +81,8 @@ SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
                                     matter_->updMobilizedBody(mobilizedBodies_[static_cast<std::size_t>(loop.linkB)]),
                                     toVec3(loop.p_B))
                 .getConstraintIndex());
+    for (const CoordinateCoupler& coupler : model_.getCouplers())
+        addCouplerConstraint(*matter_, model_, coupler, mobilizedBodies_);
 
     if (!options.hangBy.empty()) {
         const int link = model_.findLinkIndex(options.hangBy);

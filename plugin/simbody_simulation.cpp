@@ -8,7 +8,6 @@
 #include <optional>
 #include <string>
 
-#include "sinew/core/coordinate_coupler.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/forward_simulation.hpp"
 #include "sinew/core/kinematics.hpp"
@@ -55,7 +54,6 @@ std::string describeSimbodyRefusal(const Model& model, const std::exception& e) 
 SimulationSummary simulateForward(const Model& model, const ForwardSimulationOptions& options,
                                   const std::function<void(const SimulationFrame&)>& onFrame) {
     const long numReports = checkSimulationOptions(options);
-    requireNoCouplers(model, "the Simbody forward simulation");
 
     SimbodyModelOptions systemOptions;
     systemOptions.hangBy = options.hangBy;

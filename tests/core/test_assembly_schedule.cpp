@@ -117,17 +117,5 @@ TEST(AssemblySchedule, RefusesALoopOnAVirtualLink) {
                                     {"loop 'tie'", "virtual link 'knot'"}, "a loop on a virtual link"));
 }
 
-// Joint types the dynamics does not handle are refused by name (here a custom, function-based joint).
-TEST(AssemblySchedule, RefusesJointTypesItDoesNotHandle) {
-    RandomModelOptions o;
-    o.numLinks = 3;
-    o.rootJoint = JointType::Custom;
-    o.numWires = 0;
-    const Model model = generateRandomModel(o);
-    const Joint& root = model.getJoint(0);
-    EXPECT_TRUE(test::throwsErrorAt([&] { AssemblySchedule schedule(model); }, "model '",
-                                    {"joint '" + root.name + "'", "custom"}, "a custom joint"));
-}
-
 }  // namespace
 }  // namespace sinew

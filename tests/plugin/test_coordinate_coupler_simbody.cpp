@@ -1,14 +1,17 @@
 // Coupled coordinates and Simbody: OpenSim's inverse dynamics ignores constraints
 // (SimbodyMatterSubsystem::calcResidualForceIgnoringConstraints), so the dependent coordinate of a coupler
 // gets a generalized force of its own; sinew's inverse dynamics of a coupled model, along a motion that
-// satisfies the coupler, is checked against that Simbody call. The Simbody forward simulation refuses a
-// coupled model, since the plugin does not add the constraint.
+// satisfies the coupler, is checked against that Simbody call. Forward simulation enforces the coupler in
+// both engines, which follow the same motion.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "sinew/core/coordinate_coupler.hpp"
 #include "sinew/core/error.hpp"
+#include "sinew/core/forward_simulation.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
 #include "sinew/io/model_file.hpp"
 #include "sinew/plugin/simbody_simulation.hpp"
@@ -83,12 +86,33 @@ TEST(CoordinateCouplerSimbody, InverseDynamicsGivesTheDependentCoordinateItsOwnF
     EXPECT_GT(dependentForce, 0.1) << "N";
 }
 
-TEST(CoordinateCouplerSimbody, ForwardSimulationRefusesCoupledModels) {
+// Forward simulation enforces the coupler in both engines (Simbody's Constraint::CoordinateCoupler; sinew's
+// multipliers): the same trajectory over 1 s, the dependent coordinate on the coupler, energy conserved.
+TEST(CoordinateCouplerSimbody, BothEnginesSimulateTheSameCoupledMotion) {
     const Model model = readModelText(kCoupledKnee, "coupled_knee.yaml");
+    const CoordinateCoupler& coupler = model.getCouplers().front();
     ForwardSimulationOptions options;
-    options.duration = 0.01;
-    EXPECT_TRUE(test::throwsErrorAt([&] { simulateForward(model, options, nullptr); }, "model 'coupled_knee'",
-                                    {"Simbody", "does not enforce coordinate couplers", "knee_tx_coupler"}, ""));
+    options.accuracy = 1e-10;
+    options.initialSpeeds = Eigen::Vector3d(1.0, 0.5, 0.0);  // projected onto the coupler by both engines
+    std::vector<Eigen::VectorXd> trajectories[2];
+    int engine = 0;
+    for (auto simulate : {&simulateForward, &simulateForwardSinew}) {
+        double gap = 0;
+        const SimulationSummary summary = simulate(model, options, [&](const SimulationFrame& frame) {
+            trajectories[engine].push_back(frame.q);
+            gap = std::max(gap, std::abs(frame.q[coupler.dependentQ] -
+                                         coupler.scaleFactor * coupler.function.calcValue(frame.q[coupler.independentQ])));
+        });
+        ASSERT_GT(summary.peakKineticEnergy, 0.1);
+        EXPECT_LE(gap, 1e-8) << engine;
+        EXPECT_LE(summary.maxEnergyDrift / summary.peakKineticEnergy, 1e-7) << engine;
+        ++engine;
+    }
+    ASSERT_EQ(trajectories[0].size(), trajectories[1].size());
+    double worst = 0;
+    for (std::size_t k = 0; k < trajectories[0].size(); ++k)
+        worst = std::max(worst, (trajectories[0][k] - trajectories[1][k]).lpNorm<Eigen::Infinity>());
+    EXPECT_LE(worst, 1e-7) << "rad or m";
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <utility>
 #include <random>
@@ -11,6 +12,7 @@
 #include "sinew/core/error.hpp"
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/forward_simulation.hpp"
+#include "sinew/io/model_loading.hpp"
 #include "sinew/plugin/simbody_simulation.hpp"
 #include "support/test_models.hpp"
 
@@ -77,6 +79,33 @@ TEST(ForwardSimulation, ConservesEnergyOnUndampedArm26) {
         ASSERT_GT(s.peakKineticEnergy, 0.1);
         std::printf("%s, arm26 undamped: relative energy drift %.2e over 1 s\n", engine, drift);
         EXPECT_LE(drift, 1e-4) << engine;
+    }
+}
+
+// OpenSim's own models as they stand (no damping in either: Thelen muscles' passive fibres are elastic), hung
+// by the pelvis and started with random speeds: gait2392 (custom joints, moving and conditional path points,
+// 92 muscles) and Rajagopal 2015 (custom joints whose one coordinate drives three rotations, two couplers).
+// Both engines at accuracy 1e-8.
+TEST(ForwardSimulation, ConservesEnergyOnOpenSimModels) {
+    const std::filesystem::path models = std::filesystem::path(SINEW_SHARED_DIR) / "data/opensim-models/Models";
+    if (!std::filesystem::exists(models)) GTEST_SKIP() << models << " is absent (it ships with ../shared only)";
+    for (const char* file : {"Gait2392_Simbody/gait2392_thelen2003muscle.osim", "Rajagopal_OpenSense/Rajagopal2015_opensense.osim"}) {
+        const Model model = loadModel((models / file).string(), {});
+        std::mt19937 rng(22);
+        const Eigen::VectorXd u0 = generateRandomSpeeds(model, rng, 1.0);
+        for (const auto& [engine, simulate] : kEngines) {
+            ForwardSimulationOptions options;
+            options.accuracy = 1e-8;
+            options.hangBy = "pelvis";
+            options.initialSpeeds = u0;
+            const SimulationSummary s = simulate(model, options, [](const SimulationFrame&) {});
+            const double drift = s.maxEnergyDrift / s.peakKineticEnergy;
+            ASSERT_GT(s.peakKineticEnergy, 1.0) << file;
+            std::printf("%s, %s: relative energy drift %.2e over 1 s (peak kinetic energy %.0f J), constraint violation "
+                        "%.1e, %d steps\n", engine, file, drift, s.peakKineticEnergy, s.maxConstraintViolation, s.steps);
+            EXPECT_LE(drift, 1e-5) << engine << " " << file;
+            EXPECT_LE(s.maxConstraintViolation, 1e-7) << engine << " " << file;
+        }
     }
 }
 

@@ -58,7 +58,7 @@ TEST(CustomJoint, LinkPosesAndVelocitiesMatchSimbodyFunctionBased) {
     std::mt19937 rng(11);
     for (const RandomModelOptions& o : makeOptions()) {
         const Model model = generateRandomModel(o);
-        const SimbodyModel simbody(model, {"", false, false});
+        const SimbodyModel simbody(model, {"", false, false, SimbodyMobilizer::FunctionBased});
         Data data(model);
         for (int trial = 0; trial < 3; ++trial) {
             const Eigen::VectorXd q = generateRandomCoordinates(model, rng), u = generateRandomSpeeds(model, rng, 2);
@@ -87,7 +87,7 @@ TEST(InverseDynamics, MatchesSimbodyResidualForces) {
     double worst = 0;
     for (const RandomModelOptions& o : makeOptions()) {
         const Model model = generateRandomModel(o);
-        const SimbodyModel simbody(model, {"", true, false});
+        const SimbodyModel simbody(model, {"", true, false, SimbodyMobilizer::FunctionBased});
         const SimTK::MultibodySystem& system = simbody.getSystem();
         Data data(model);
         Eigen::VectorXd tau(model.getNumU());
@@ -121,7 +121,7 @@ TEST(InverseDynamics, InvertsSimbodyForwardDynamics) {
     std::mt19937 rng(13);
     for (const RandomModelOptions& o : makeOptions()) {
         const Model model = generateRandomModel(o);
-        const SimbodyModel simbody(model, {"", true, false});
+        const SimbodyModel simbody(model, {"", true, false, SimbodyMobilizer::FunctionBased});
         const SimTK::MultibodySystem& system = simbody.getSystem();
         Data data(model);
         const Eigen::VectorXd q = generateRandomCoordinates(model, rng), u = generateRandomSpeeds(model, rng, 2);

@@ -37,8 +37,9 @@ struct AssemblyJoint {
         Hang   // link `index` welded to ground where it is (the paper's body hung by the head)
     };
     // What the joint lets beta do relative to alpha, which fixes its motion subspace S and constraint-force
-    // basis T (docs/closed-chain.md, "Joints"): a loop is a ball, the hang a weld.
-    enum class Motion { Free, Ball, Pin, Weld };
+    // basis T (docs/closed-chain.md, "Joints"): a loop is a ball, the hang a weld. A custom joint's S is its
+    // H_FM at the current pose (Data::H_FM), T that subspace's orthogonal complement.
+    enum class Motion { Free, Ball, Pin, Weld, Custom };
     Kind kind = Kind::Tree;
     Motion motion = Motion::Ball;
     int index = 0;

@@ -1,8 +1,8 @@
 #pragma once
 // Coupled coordinates (OpenSim's CoordinateCouplerConstraint, Model::getCouplers): putting a pose on the
-// constraint manifold, and refusing the engines that would let the dependent coordinate drift.
+// constraint manifold. Both engines enforce couplers in forward dynamics (calcForwardDynamics; Simbody's
+// Constraint::CoordinateCoupler, sinew/plugin/coupler_constraint.hpp).
 #include <Eigen/Core>
-#include <string>
 
 #include "sinew/core/model.hpp"
 
@@ -14,9 +14,5 @@ namespace sinew {
 // InverseDynamicsTool does not do this (a missing column is held at its default value, a present one used
 // as it is), so inverse dynamics should be given the motion as it stands. Allocates nothing.
 void applyCoordinateCouplers(const Model& model, Eigen::Ref<Eigen::VectorXd> q);
-
-// Throws sinew::Error naming the model's first coupler, for `engine` (e.g. "sinew's forward dynamics"),
-// which integrates every coordinate as free and would break the coupling.
-void requireNoCouplers(const Model& model, const std::string& engine);
 
 }  // namespace sinew

@@ -3,6 +3,7 @@
 // assembly-disassembly on the rest (Featherstone's divide-and-conquer algorithm in the multi-handle form
 // that Yamane and Nakamura's assembly-disassembly computes); equations and conventions in
 // docs/closed-chain.md. Simbody-free.
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <vector>
 
@@ -22,6 +23,8 @@ struct ForwardDynamicsData {
     // point of its inboard joint, jointPoint[b] (its reference point o_b).
     std::vector<Eigen::Vector3d> jointPoint;
     std::vector<SpatialVector> jointBias;
+    // Per assembly joint of a custom joint: its motion subspace S (6 x nu) about the joint point, ground axes.
+    std::vector<JointMotion> jointMotion;
     // Per body (numBodies), about o_b, ground axes: spatial velocity; articulated inertia and bias force
     // (the body's rigid inertia and p = v x* I v - f_external, plus what the bodies absorbed into it add,
     // RBDA eqs. 7.20-7.21); and, for bodies with a leaf (the skeleton), the inverse of that inertia.
@@ -50,11 +53,23 @@ struct ForwardDynamicsData {
     // joint's point.
     std::vector<SpatialVector> handleForce;
 
+    // Coordinate couplers (Model::getCouplers, m of them), enforced by multipliers on top of the loops'
+    // solve (docs/closed-chain.md, "Couplers"): G's rows, the udot per unit multiplier (nu x m), G A G^T and
+    // its factorisation, the free udot, the right-hand side, and tau + G^T lambda.
+    Eigen::VectorXd couplerSlope;  // (m) s f'(q_independent)
+    Eigen::MatrixXd couplerResponse;
+    Eigen::MatrixXd couplerMatrix;
+    Eigen::LDLT<Eigen::MatrixXd> couplerSolver;
+    Eigen::VectorXd freeUdot, couplerRhs, couplerTau;
+
     // Outputs.
     Eigen::VectorXd udot;  // (nu) generalized accelerations; 0 for virtual links' joints
     // (numBodies) spatial accelerations about each body's reference point jointPoint[b], ground axes
     std::vector<SpatialVector> bodyAcceleration;
     std::vector<Eigen::Vector3d> loopForce;    // (numLoops) N, force on link B at the loop point, in ground
+    // (m) each coupler's multiplier lambda: the generalized force it applies to its dependent coordinate (N m
+    // or N); the independent coordinate gets -s f'(q) lambda.
+    Eigen::VectorXd couplerForce;
     SpatialVector hangForce = SpatialVector::Zero();  // holding the hung link: [moment about its origin; force]
     // Constraint directions that repeat others (e.g. a second ball loop on the axis of a hinge): solved in
     // the least-squares sense, accelerations exact, the loop forces along them minimum-norm.
@@ -69,7 +84,8 @@ struct ForwardDynamicsData {
 // calcPositionKinematics and calcVelocityKinematics in `data`. `threads` > 1 shares each level of the
 // schedule between threads (useful with a Balanced schedule); the answer does not depend on it. Virtual
 // links take no part (see AssemblySchedule): their joints' udot is 0, and forces on them in `linkForces`
-// are ignored.
+// are ignored. Coordinate couplers hold at the acceleration level (q_dep'' = d^2/dt^2 s f(q_ind)), at the
+// cost of m + 1 more passes for m couplers.
 void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, const Data& data,
                          const Eigen::VectorXd& tau, const std::vector<SpatialVector>& linkForces,
                          ForwardDynamicsData& fd, int threads = 1);

@@ -66,7 +66,7 @@ struct Coordinate {
 // OpenSim's CoordinateCouplerConstraint: q[dependentQ] = scaleFactor * function(q[independentQ]), both
 // coordinates with qdot = u (pin or custom joints). The algorithms that take the tree's q as free (inverse
 // dynamics, as OpenSim's, and the wire Jacobian) ignore it; moment arms follow it (core/moment_arms.hpp),
-// forward dynamics refuses a model with one, and applyCoordinateCouplers fills the dependent coordinates.
+// forward dynamics enforces it (both engines), and applyCoordinateCouplers fills the dependent coordinates.
 struct CoordinateCoupler {
     std::string name;
     int dependentQ = 0, dependentU = 0;      // the dependent coordinate's index in q and in u

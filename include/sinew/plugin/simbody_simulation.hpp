@@ -14,8 +14,8 @@ namespace sinew {
 
 // Calls onFrame for t = 0 and every reportInterval up to duration. Integrator::Adaptive is Simbody's
 // Runge-Kutta-Merson with error control at options.accuracy; RungeKutta4Fixed the same method with
-// setFixedStepSize (the report interval split into equal steps no longer than fixedStep). Loops and the hang
-// weld are Simbody constraints, projected to options.accuracy. Virtual links are held in quasi-static
+// setFixedStepSize (the report interval split into equal steps no longer than fixedStep). Loops, couplers and the
+// hang weld are Simbody constraints, projected to options.accuracy. Virtual links are held in quasi-static
 // equilibrium by a VirtualLinkWireForce (simbody_model.hpp); frames carry their poses and quasi-static
 // twists (SimulationSummary::maxVirtualLinkResidual: how well it held). Throws sinew::Error for an
 // integration failure, naming the time.
