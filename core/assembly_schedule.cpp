@@ -1,5 +1,6 @@
 #include "sinew/core/assembly_schedule.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cassert>
 #include <numeric>
@@ -37,11 +38,20 @@ AssemblyJoint::Motion motionOf(JointType type) {
 AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) : kind_(kind) {
     if (kind == Kind::Automatic) {
         AssemblySchedule serial(model, Kind::Serial, hangLink);
+        if (serial.findPointMassBody() >= 0) {
+            *this = std::move(serial);
+            return;
+        }
         AssemblySchedule balanced(model, Kind::Balanced, hangLink);
         *this = balanced.getCost() < serial.getCost() ? std::move(balanced) : std::move(serial);
         return;
     }
     buildBodies(model);
+    // The balanced schedule starts from every body's own inverse inertia, which a point mass has not.
+    if (const int body = findPointMassBody(); kind == Kind::Balanced && body >= 0)
+        throw Error("model '" + model.getName() + "': link '" + model.getLink(bodies_[static_cast<std::size_t>(body)].links.front()).name +
+                    "' is a point mass (no rotational inertia): the balanced schedule inverts every body's inertia; "
+                    "use the serial schedule");
     const int numTreeJoints = static_cast<int>(joints_.size());
     addLoopJoints(model);
     addHangJoint(model, hangLink);
@@ -209,6 +219,15 @@ void AssemblySchedule::buildBodies(const Model& model) {
                             info.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
         }
     }
+}
+
+int AssemblySchedule::findPointMassBody() const {
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+        const Eigen::Vector3d moments =
+            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(bodies_[b].inertia, Eigen::EigenvaluesOnly).eigenvalues();
+        if (!(moments[0] > 1e-12 * moments[2])) return static_cast<int>(b);
+    }
+    return -1;
 }
 
 // Serial schedules fold every subtree that no loop crosses into its parent: with Absorb when it holds no

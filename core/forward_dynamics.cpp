@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "sinew/core/custom_joint.hpp"
+#include "sinew/core/error.hpp"
 
 namespace sinew {
 namespace {
@@ -365,6 +366,7 @@ struct Evaluation {
                 // complement C - B^T A^-1 B, and pa = [R tau; ...]: 3 x 3 blocks only.
                 const Eigen::Matrix3d B = I.topRightCorner<3, 3>();
                 const Eigen::Matrix3d& Ainv = at(fd.rotationalInverse, j) = I.topLeftCorner<3, 3>().inverse();
+                at(fd.singular, j) = !Ainv.allFinite();
                 const Eigen::Matrix3d BtAinv = B.transpose() * Ainv;
                 // Kept exactly symmetric: the roundoff asymmetry of B^T A^-1 B grows geometrically along
                 // chains of ball joints (1e-8 relative after 40 links, NaN after 127).
@@ -378,6 +380,7 @@ struct Evaluation {
                 const Eigen::Vector3d z = R.col(2);
                 const SpatialVector U = I.leftCols<3>() * z;
                 const double D = z.dot(U.head<3>());
+                at(fd.singular, j) = !(D > 0);
                 const Matrix6d Ia = I - U * U.transpose() / D;
                 pa = p + Ia * c + U * ((tauJ[0] - z.dot(p.head<3>())) / D);
                 if (parentInertia) addShiftedInertia(*parentInertia, Ia, d);
@@ -387,6 +390,7 @@ struct Evaluation {
                 const JointMotion& Sj = S(j);
                 const JointMotion U = I * Sj;
                 const Eigen::LLT<JointSquare> D(Sj.transpose() * U);
+                at(fd.singular, j) = D.info() != Eigen::Success;
                 const JointVector rest = Eigen::Map<const JointVector>(tauJ, Sj.cols()) - Sj.transpose() * p;
                 const Matrix6d Ia = I - U * D.solve(U.transpose());
                 pa = p + Ia * c + U * D.solve(rest);
@@ -421,7 +425,12 @@ struct Evaluation {
                 a.head<3>() += z * ((tauJ[0] - z.dot(p.head<3>()) - U.dot(a)) / z.dot(U.head<3>()));
                 break;
             }
-            case Motion::Free: a = I.llt().solve(jointForce(j) - p); break;
+            case Motion::Free: {
+                const Eigen::LLT<Matrix6d> inertia(I);
+                at(fd.singular, j) = inertia.info() != Eigen::Success;
+                a = inertia.solve(jointForce(j) - p);
+                break;
+            }
             case Motion::Custom: {
                 const JointMotion& Sj = S(j);
                 const JointMotion U = I * Sj;
@@ -476,6 +485,7 @@ struct Evaluation {
     void leaf(int o) const {
         const int body = operation(o).first;
         const Matrix6d& G = at(fd.inverseInertia, body) = invertInertia(at(fd.articulatedInertia, body));
+        at(fd.singular, body) = !G.allFinite();  // body b's inboard joint is assembly joint b
         const SpatialVector a0 = -G * at(fd.articulatedBias, body);
         const std::vector<int>& handles = schedule.getHandles(body);
         const HandleEquations leafEquations = handleEquations(body);  // the body's leaf subassembly
@@ -679,6 +689,7 @@ ForwardDynamicsData::ForwardDynamicsData(const Model& model, const AssemblySched
     jointPoint.assign(joints, Eigen::Vector3d::Zero());
     jointBias.assign(joints, SpatialVector::Zero());
     jointMotion.assign(joints, JointMotion(6, 0));
+    singular.assign(joints, 0);
     velocity.assign(bodies, SpatialVector::Zero());
     articulatedInertia.assign(bodies, Matrix6d::Zero());
     articulatedBias.assign(bodies, SpatialVector::Zero());
@@ -776,6 +787,20 @@ void runEvaluation(const Evaluation& e, int threads) {
     }
 }
 
+// Throws, naming the first joint whose motion no inertia resisted (a point mass at a ball's centre...): u̇
+// would be infinite there.
+void requireRegular(const Model& model, const AssemblySchedule& schedule, const ForwardDynamicsData& fd) {
+    for (std::size_t j = 0; j < fd.singular.size(); ++j) {
+        if (!fd.singular[j]) continue;
+        const AssemblyJoint& aj = schedule.getJoints()[j];
+        const std::string link = model.getLink(aj.index).name;
+        throw Error("model '" + model.getName() + "': forward dynamics is singular at joint '" +
+                    model.getJoint(aj.index).name + "' of link '" + link +
+                    "': no inertia resists a motion it allows (a point mass at a ball or free joint's centre or on a "
+                    "pin's axis, with nothing massive beyond it); give link '" + link + "' a rotational inertia");
+    }
+}
+
 // Coupler k ties q_dep = s f(q_ind): its velocity row G_k = e_dep - s f'(q_ind) e_ind (qdot = u for both),
 // and G_k udot = s f''(q_ind) u_ind^2. udot is linear in tau: udot = udot_free + A G^T lambda, with A G_k^T
 // from a pass with tau = G_k^T and no velocity terms, gravity or applied forces. Solving the m x m system
@@ -826,6 +851,7 @@ void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, c
                          ForwardDynamicsData& fd, int threads) {
     const Evaluation e{model, schedule, data, tau, linkForces, fd};
     runEvaluation(e, threads);
+    requireRegular(model, schedule, fd);
     if (model.getNumCouplers() > 0) enforceCouplers(e, threads);
     // Virtual links take no part (their quasi-static treatment drives them).
     for (int link : schedule.getVirtualLinks()) {

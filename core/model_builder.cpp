@@ -256,6 +256,9 @@ void checkMassProperties(const LinkSpec& link, bool welded) {
     // The eigensolver reads one triangle only, so a non-symmetric inertia would otherwise pass unchecked.
     if (!I.isApprox(I.transpose(), 1e-12))
         throw ModelError(link.where, "link '" + link.name + "': inertia is not symmetric");
+    // A point mass (mass without inertia) is a body to OpenSim and Simbody; forward dynamics refuses it only
+    // where no inertia then resists a joint's motion (calcForwardDynamics names that joint).
+    if (I.isZero(0)) return;
     const Eigen::Vector3d eig = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues();
     if (!(eig.minCoeff() > 0))
         throw ModelError(link.where, "link '" + link.name + "': inertia is not positive definite (smallest principal "

@@ -92,13 +92,13 @@ public:
         // independent, so threads can share them; a chain or a balanced tree needs O(log N) levels.
         Balanced,
         // Whichever of the two does less estimated work (getCost): serial for trees and local loops,
-        // balanced where loops stay open across long chains.
+        // balanced where loops stay open across long chains. Serial where a body is a point mass.
         Automatic
     };
 
     // `hangLink`: a link to weld to ground where it is, or -1. Throws sinew::Error for what the algorithm
-    // does not handle: a joint type other than free, ball, pin or weld, a loop or hang on a virtual link,
-    // a loop between two links welded together.
+    // does not handle: a loop or hang on a virtual link, a loop between two links welded together, a point
+    // mass in the balanced schedule.
     explicit AssemblySchedule(const Model& model, Kind kind = Kind::Automatic, int hangLink = -1);
 
     Kind getKind() const { return kind_; }
@@ -131,6 +131,8 @@ private:
     void addHangJoint(const Model& model, int hangLink);
     void chooseTreeOperations(const Model& model, int hangLink);
     void buildLeaves(int numTreeJoints);
+    // A body whose central inertia is singular (point masses: mass without rotational inertia), or -1.
+    int findPointMassBody() const;
     void scheduleSerial(int numTreeJoints);
     void scheduleBalanced(int numTreeJoints);
     int leafOf(int body) const;     // the body's leaf subassembly (ground's for kGroundBody)

@@ -25,6 +25,8 @@ struct ForwardDynamicsData {
     std::vector<SpatialVector> jointBias;
     // Per assembly joint of a custom joint: its motion subspace S (6 x nu) about the joint point, ground axes.
     std::vector<JointMotion> jointMotion;
+    // Per assembly joint: set where the inertia its motion acts on was singular (point masses).
+    std::vector<char> singular;
     // Per body (numBodies), about o_b, ground axes: spatial velocity; articulated inertia and bias force
     // (the body's rigid inertia and p = v x* I v - f_external, plus what the bodies absorbed into it add,
     // RBDA eqs. 7.20-7.21); and, for bodies with a leaf (the skeleton), the inverse of that inertia.
@@ -85,7 +87,8 @@ struct ForwardDynamicsData {
 // schedule between threads (useful with a Balanced schedule); the answer does not depend on it. Virtual
 // links take no part (see AssemblySchedule): their joints' udot is 0, and forces on them in `linkForces`
 // are ignored. Coordinate couplers hold at the acceleration level (q_dep'' = d^2/dt^2 s f(q_ind)), at the
-// cost of m + 1 more passes for m couplers.
+// cost of m + 2 more passes for m couplers (docs/closed-chain.md, "Couplers"). Throws sinew::Error naming
+// the joint where the mass matrix is singular (a point mass at a ball joint's centre, say).
 void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, const Data& data,
                          const Eigen::VectorXd& tau, const std::vector<SpatialVector>& linkForces,
                          ForwardDynamicsData& fd, int threads = 1);
