@@ -87,6 +87,37 @@ CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& 
     return samples;
 }
 
+StorageTable completeCoordinateTable(const Model& model, const StorageTable& table,
+                                     const std::function<void(const std::string&)>& notes) {
+    const std::vector<Coordinate>& coordinates = model.getCoordinates();
+    StorageTable complete = table;
+    complete.columns.clear();
+    for (std::vector<double>& row : complete.rows) row.clear();
+    const std::string source = table.where.empty() ? "the motion" : table.where;
+    for (std::size_t c = 0; c < coordinates.size(); ++c) {
+        const Coordinate& coordinate = coordinates[c];
+        const auto found = std::find(table.columns.begin(), table.columns.end(), coordinate.name);
+        double held = coordinate.defaultValue;
+        if (found == table.columns.end()) {
+            if (table.inDegrees && coordinate.motionType == MotionType::Rotational &&
+                !isQuaternionComponent(model, static_cast<int>(c)))
+                held *= 180 / M_PI;
+            if (notes)
+                notes("coordinate '" + coordinate.name + "' is not in " + source + ": held at its default value " +
+                      std::to_string(coordinate.defaultValue) + " (as OpenSim's tools do)");
+        }
+        complete.columns.push_back(coordinate.name);
+        const std::size_t column = static_cast<std::size_t>(found - table.columns.begin());
+        for (std::size_t r = 0; r < table.rows.size(); ++r)
+            complete.rows[r].push_back(found == table.columns.end() ? held : table.rows[r][column]);
+    }
+    for (const std::string& column : table.columns)
+        if (notes && std::find(complete.columns.begin(), complete.columns.end(), column) == complete.columns.end())
+            notes("column '" + column + "' of " + source + " is no coordinate of model '" + model.getName() +
+                  "': not read (as OpenSim's tools do)");
+    return complete;
+}
+
 CoordinateTrajectory preprocessCoordinateSamples(const Model& model, const CoordinateSamples& samples,
                                                  double lowpassCutoffHz, double startTime, double finalTime) {
     CoordinatePreprocessingOptions options;

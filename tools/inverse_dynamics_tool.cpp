@@ -94,8 +94,8 @@ std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std:
     options.startTime = setup.startTime;
     options.finalTime = setup.endTime;
     options.onFrame = onFrame;
-    const StorageTable result =
-        runInverseDynamics(model, readStorageFile(setup.coordinatesFile), loads ? &*loads : nullptr, options);
+    const StorageTable coordinates = completeCoordinateTable(model, readStorageFile(setup.coordinatesFile), notes);
+    const StorageTable result = runInverseDynamics(model, coordinates, loads ? &*loads : nullptr, options);
     const std::filesystem::path directory = outputDirectory.empty() ? setup.resultsDirectory : outputDirectory;
     std::filesystem::create_directories(directory);
     const std::string path = (directory / setup.outputGenForceFile).string();

@@ -8,6 +8,7 @@
 #include "sinew/io/osim_model.hpp"
 #include "sinew/io/osim_model_converter.hpp"
 #include "sinew/io/tool_setup.hpp"
+#include "sinew/tools/coordinate_table.hpp"
 
 namespace sinew {
 namespace {
@@ -106,9 +107,10 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
 
     std::optional<ExternalLoads> loads;
     if (!setup.externalLoadsFile.empty()) loads = readExternalLoads(setup.externalLoadsFile);
+    const StorageTable motion = states ? readStorageFile(setup.statesFile)
+                                       : completeCoordinateTable(model, readStorageFile(setup.coordinatesFile), note);
     const OsimStaticOptimizationResult result =
-        runOsimStaticOptimization(model, readStorageFile(states ? setup.statesFile : setup.coordinatesFile),
-                                  loads ? &*loads : nullptr, options);
+        runOsimStaticOptimization(model, motion, loads ? &*loads : nullptr, options);
     if (result.flaggedFrames > 0)
         note(std::to_string(result.flaggedFrames) + " frames were not solved to optimality (status in the report)");
 

@@ -2,6 +2,7 @@
 // (../shared/data/opensim, see its README), through the unchanged OpenSim setup files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -9,7 +10,9 @@
 
 #include "sinew/io/storage_file.hpp"
 #include "sinew/io/tool_setup.hpp"
+#include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/inverse_dynamics_tool.hpp"
+#include "support/test_models.hpp"
 
 namespace sinew {
 namespace {
@@ -53,6 +56,49 @@ std::vector<std::pair<std::string, double>> runAndCompare(const std::string& exa
     std::cout << example << ": RMS difference from OpenSim 4.4.1 (" << ours.times.size() << " frames)\n";
     for (const auto& [name, value] : rms) std::cout << "  " << std::setw(28) << std::left << name << value << "\n";
     return rms;
+}
+
+bool contains(const std::vector<std::string>& notes, const std::vector<std::string>& words) {
+    return std::any_of(notes.begin(), notes.end(), [&](const std::string& note) {
+        return std::all_of(words.begin(), words.end(), [&](const std::string& w) { return note.find(w) != std::string::npos; });
+    });
+}
+
+// OpenSim's tools hold a coordinate missing from the motion at its default value and do not read columns
+// that are no coordinate. arm26's elbow left out of a degrees table that has a column too many: the same
+// generalized forces as the table written out by hand with the elbow at its default (60 degrees), and a
+// note for each.
+TEST(InverseDynamicsTool, AMissingCoordinateIsHeldAtItsDefaultAndAnExtraColumnIsNotRead) {
+    const Model model = test::loadArm26().model;
+    const std::vector<std::string> names = getCoordinateNames(model);
+    StorageTable partial, byHand;
+    partial.inDegrees = byHand.inDegrees = true;
+    partial.columns = {"r_shoulder_qw", "r_shoulder_qx", "r_shoulder_qy", "r_shoulder_qz", "marker_x"};
+    byHand.columns = names;
+    for (int r = 0; r <= 50; ++r) {
+        const double t = 0.02 * r, a = 0.3 * std::sin(3 * t);
+        partial.times.push_back(t);
+        byHand.times.push_back(t);
+        partial.rows.push_back({std::cos(a), 0.0, 0.0, std::sin(a), 7.0});
+        std::vector<double> row(names.size());
+        for (std::size_t c = 0; c < names.size(); ++c) {
+            if (names[c] == "r_shoulder_qw") row[c] = std::cos(a);
+            else if (names[c] == "r_shoulder_qz") row[c] = std::sin(a);
+            else if (names[c] == "r_elbow") row[c] = 60;  // its default, 1.0471975511965976 rad, in degrees
+        }
+        byHand.rows.push_back(row);
+    }
+    ASSERT_EQ(names.size(), 5u);
+    std::vector<std::string> notes;
+    const StorageTable completed = completeCoordinateTable(model, partial, [&](const std::string& n) { notes.push_back(n); });
+    EXPECT_TRUE(contains(notes, {"'r_elbow'", "default value 1.047"}));
+    EXPECT_TRUE(contains(notes, {"'marker_x'", "not read"}));
+    const StorageTable ours = runInverseDynamics(model, completed, nullptr, {});
+    const StorageTable reference = runInverseDynamics(model, byHand, nullptr, {});
+    ASSERT_EQ(ours.rows.size(), reference.rows.size());
+    for (std::size_t r = 0; r < ours.rows.size(); ++r)
+        for (std::size_t c = 0; c < ours.columns.size(); ++c)
+            EXPECT_NEAR(ours.rows[r][c], reference.rows[r][c], 1e-12 * (1 + std::abs(reference.rows[r][c])));
 }
 
 TEST(InverseDynamicsTool, Gait2354MatchesOpenSim) {

@@ -4,6 +4,7 @@
 // read as their quaternion columns (j_qw j_qx j_qy j_qz, never converted: no angles) and a free joint's
 // position (j_x j_y j_z, m).
 #include <Eigen/Core>
+#include <functional>
 #include <string>
 
 #include "sinew/signal/coordinate_preprocessing.hpp"
@@ -23,6 +24,14 @@ struct CoordinateSamples {
 // takes, row by row, the sign of q or -q nearer the previous row's, so that its components vary
 // continuously.
 CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& table);
+
+// A motion as OpenSim's tools take it: a model coordinate missing from the table is held at its default
+// value (InverseDynamicsTool: "coordinate file does not contain coordinate ... Assuming default value";
+// AnalyzeTool's SimbodyEngine::formCompleteStorages alike), and a column that is no coordinate is not
+// read. Returns the table with exactly the model's coordinates (a default in degrees for a rotational one
+// of an inDegrees table), telling `notes` each coordinate held and each column left out.
+StorageTable completeCoordinateTable(const Model& model, const StorageTable& table,
+                                     const std::function<void(const std::string&)>& notes);
 
 // q, q̇, q̈ from the samples as OpenSim's tools derive them (coordinate_preprocessing.hpp): cutoff in Hz
 // (negative: no filtering), the time range in s; errors name the table's file, the row and the model's
