@@ -30,13 +30,14 @@ double interpolate(const StorageTable& table, std::size_t column, double t) {
 
 // Runs the setup and returns, per reference column, the RMS difference of sinew's output from the
 // reference interpolated onto sinew's times; prints the table docs/validation.md quotes.
-std::vector<std::pair<std::string, double>> runAndCompare(const std::string& example, const std::string& setupFile,
-                                                          const std::string& referenceFile) {
-    const InverseDynamicsSetup setup = readInverseDynamicsSetup((kOpenSimData / example / setupFile).string());
+std::vector<std::pair<std::string, double>> runAndCompare(const std::string& example,
+                                                          const std::filesystem::path& setupPath,
+                                                          const std::filesystem::path& referencePath) {
+    const InverseDynamicsSetup setup = readInverseDynamicsSetup(setupPath.string());
     const std::string output = (std::filesystem::path(::testing::TempDir()) / ("sinew_id_" + example)).string();
     const std::string written = runInverseDynamicsTool(setup, output, {});
     const StorageTable ours = readStorageFile(written);
-    const StorageTable reference = readStorageFile((kOpenSimData / example / "opensim-4.4.1" / referenceFile).string());
+    const StorageTable reference = readStorageFile(referencePath.string());
     EXPECT_GT(ours.times.size(), 10u);
     std::vector<std::pair<std::string, double>> rms;
     for (std::size_t c = 0; c < reference.columns.size(); ++c) {
@@ -53,7 +54,7 @@ std::vector<std::pair<std::string, double>> runAndCompare(const std::string& exa
         }
         rms.emplace_back(reference.columns[c], std::sqrt(sum / static_cast<double>(ours.times.size())));
     }
-    std::cout << example << ": RMS difference from OpenSim 4.4.1 (" << ours.times.size() << " frames)\n";
+    std::cout << example << ": RMS difference from OpenSim's (" << ours.times.size() << " frames)\n";
     for (const auto& [name, value] : rms) std::cout << "  " << std::setw(28) << std::left << name << value << "\n";
     return rms;
 }
@@ -104,16 +105,30 @@ TEST(InverseDynamicsTool, AMissingCoordinateIsHeldAtItsDefaultAndAnExtraColumnIs
 TEST(InverseDynamicsTool, Gait2354MatchesOpenSim) {
     if (!std::filesystem::exists(kOpenSimData / "gait2354"))
         GTEST_SKIP() << "../shared/data/opensim/gait2354 is absent (it ships only with sinew's developer data)";
-    for (const auto& [name, value] : runAndCompare("gait2354", "subject01_Setup_InverseDynamics.xml", "inverse_dynamics.sto"))
+    const std::filesystem::path example = kOpenSimData / "gait2354";
+    for (const auto& [name, value] : runAndCompare("gait2354", example / "subject01_Setup_InverseDynamics.xml",
+                                                   example / "opensim-4.4.1" / "inverse_dynamics.sto"))
         EXPECT_LE(value, 2.0) << name;
 }
 
 TEST(InverseDynamicsTool, Arm26MatchesOpenSim) {
     if (!std::filesystem::exists(kOpenSimData / "arm26"))
         GTEST_SKIP() << "../shared/data/opensim/arm26 is absent (it ships only with sinew's developer data)";
-    for (const auto& [name, value] :
-         runAndCompare("arm26", "arm26_Setup_InverseDynamics.xml", "arm26_InverseDynamics.sto"))
+    const std::filesystem::path example = kOpenSimData / "arm26";
+    for (const auto& [name, value] : runAndCompare("arm26", example / "arm26_Setup_InverseDynamics.xml",
+                                                   example / "opensim-4.4.1" / "arm26_InverseDynamics.sto"))
         EXPECT_LE(value, 1e-2) << name;
+}
+
+// OpenSim's Gait10dof18musc walking pipeline (../shared/data/opensim-models, an older OpenSim's reference):
+// its ID setup as it stands, ground reactions through its ExternalLoads.
+TEST(InverseDynamicsTool, Gait10dof18muscWalkMatchesOpenSimsReference) {
+    const std::filesystem::path example =
+        std::filesystem::path(SINEW_SHARED_DIR) / "data/opensim-models/Pipelines/Gait10dof18musc/OutputReference";
+    if (!std::filesystem::exists(example)) GTEST_SKIP() << example << " is absent (it ships only with sinew's developer data)";
+    for (const auto& [name, value] : runAndCompare("gait10dof18musc", example / "ID" / "walk_Setup_ID.xml",
+                                                   example / "ID" / "Results" / "subject01_walk_ID.sto"))
+        EXPECT_LE(value, 2.0) << name;
 }
 
 }  // namespace
