@@ -232,7 +232,7 @@ struct Evaluation {
     const std::vector<SpatialVector>& linkForces;
     ForwardDynamicsData& fd;
     // The mass matrix's part alone: no velocity terms, gravity or link forces, so udot = A tau with A the
-    // loop-constrained inverse inertia (the couplers' responses).
+    // loop-constrained inverse inertia (the coordinate constraints' responses).
     bool inertialOnly = false;
 
     const AssemblyJoint& joint(int j) const { return at(schedule.getJoints(), j); }
@@ -719,15 +719,26 @@ ForwardDynamicsData::ForwardDynamicsData(const Model& model, const AssemblySched
     udot = Eigen::VectorXd::Zero(model.getNumU());
     bodyAcceleration.assign(bodies, SpatialVector::Zero());
     loopForce.assign(static_cast<std::size_t>(model.getNumLoops()), Eigen::Vector3d::Zero());
-    const int couplers = model.getNumCouplers();
-    couplerSlope = Eigen::VectorXd::Zero(couplers);
-    couplerResponse = Eigen::MatrixXd::Zero(model.getNumU(), couplers);
-    couplerMatrix = Eigen::MatrixXd::Zero(couplers, couplers);
-    couplerSolver = Eigen::LDLT<Eigen::MatrixXd>(couplers);
+    for (const CoordinateCoupler& c : model.getCouplers()) {
+        constraintU.push_back(c.dependentU);
+        constraintOtherU.push_back(c.independentU);
+    }
+    for (std::size_t q = 0; q < model.getCoordinates().size(); ++q) {
+        const Coordinate& coordinate = model.getCoordinates()[q];
+        if (!coordinate.locked) continue;
+        const Joint& joint = model.getJoint(coordinate.joint);  // a custom joint: qdot = u
+        constraintU.push_back(joint.uStart + static_cast<int>(q) - joint.qStart);
+        constraintOtherU.push_back(-1);
+    }
+    const Eigen::Index m = static_cast<Eigen::Index>(constraintU.size());
+    constraintSlope = Eigen::VectorXd::Zero(m);
+    constraintResponse = Eigen::MatrixXd::Zero(model.getNumU(), m);
+    constraintMatrix = Eigen::MatrixXd::Zero(m, m);
+    constraintSolver = Eigen::LDLT<Eigen::MatrixXd>(m);
     freeUdot = Eigen::VectorXd::Zero(model.getNumU());
-    couplerRhs = Eigen::VectorXd::Zero(couplers);
-    couplerTau = Eigen::VectorXd::Zero(model.getNumU());
-    couplerForce = Eigen::VectorXd::Zero(couplers);
+    constraintRhs = Eigen::VectorXd::Zero(m);
+    constraintTau = Eigen::VectorXd::Zero(model.getNumU());
+    coordinateConstraintForce = Eigen::VectorXd::Zero(m);
 }
 
 namespace {
@@ -801,47 +812,57 @@ void requireRegular(const Model& model, const AssemblySchedule& schedule, const 
     }
 }
 
-// Coupler k ties q_dep = s f(q_ind): its velocity row G_k = e_dep - s f'(q_ind) e_ind (qdot = u for both),
-// and G_k udot = s f''(q_ind) u_ind^2. udot is linear in tau: udot = udot_free + A G^T lambda, with A G_k^T
-// from a pass with tau = G_k^T and no velocity terms, gravity or applied forces. Solving the m x m system
-// G A G^T lambda = rhs - G udot_free gives the multipliers; a last pass with tau + G^T lambda then leaves
-// every output (udot, accelerations, loop and handle forces) consistent with them.
-void enforceCouplers(const Evaluation& free, int threads) {
+// Coordinate constraints (docs/closed-chain.md, "Coordinate constraints"), row k: a coupler's q_dep =
+// s f(q_ind) has G_k = e_dep - s f'(q_ind) e_ind (qdot = u for both) and G_k udot = s f''(q_ind) u_ind^2; a
+// locked coordinate has G_k = e_i and G_k udot = 0. udot is affine in tau: udot = udot_free + A G^T lambda,
+// with A G_k^T from a pass with tau = G_k^T and no velocity terms, gravity or applied forces. Solving the
+// m x m system G A G^T lambda = rhs - G udot_free gives the multipliers; a last pass with tau + G^T lambda
+// then leaves every output (udot, accelerations, loop and handle forces) consistent with them.
+void enforceCoordinateConstraints(const Evaluation& free, int threads) {
     const Model& model = free.model;
     const Data& data = free.data;
     ForwardDynamicsData& fd = free.fd;
     const std::vector<CoordinateCoupler>& couplers = model.getCouplers();
-    const int m = static_cast<int>(couplers.size());
+    const int m = static_cast<int>(fd.constraintU.size());
+    fd.constraintRhs.setZero();  // a lock's: udot = 0
+    for (int k = 0; k < model.getNumCouplers(); ++k) {
+        const CoordinateCoupler& c = at(couplers, k);
+        const double rate = data.u[c.independentU];
+        fd.constraintSlope[k] = c.scaleFactor * c.function.calcDerivative(data.q[c.independentQ], 1);
+        fd.constraintRhs[k] = c.scaleFactor * c.function.calcDerivative(data.q[c.independentQ], 2) * rate * rate;
+    }
+    // G_k v for a vector v (nu) or a row of a matrix.
+    auto applyRow = [&](int k, const auto& v) {
+        const int other = at(fd.constraintOtherU, k);
+        return other < 0 ? v(at(fd.constraintU, k)) : v(at(fd.constraintU, k)) - fd.constraintSlope[k] * v(other);
+    };
+    // tau += G_k^T scale.
+    auto addRowTranspose = [&](int k, double scale) {
+        fd.constraintTau[at(fd.constraintU, k)] += scale;
+        const int other = at(fd.constraintOtherU, k);
+        if (other >= 0) fd.constraintTau[other] -= fd.constraintSlope[k] * scale;
+    };
     fd.freeUdot = fd.udot;
     for (int k = 0; k < m; ++k) {
-        const CoordinateCoupler& c = at(couplers, k);
-        fd.couplerSlope[k] = c.scaleFactor * c.function.calcDerivative(data.q[c.independentQ], 1);
-        fd.couplerTau.setZero();
-        fd.couplerTau[c.dependentU] = 1;
-        fd.couplerTau[c.independentU] -= fd.couplerSlope[k];
-        Evaluation response{model, free.schedule, data, fd.couplerTau, free.linkForces, fd};
+        fd.constraintTau.setZero();
+        addRowTranspose(k, 1);
+        Evaluation response{model, free.schedule, data, fd.constraintTau, free.linkForces, fd};
         response.inertialOnly = true;
         runEvaluation(response, threads);
-        fd.couplerResponse.col(k) = fd.udot;
+        fd.constraintResponse.col(k) = fd.udot;
     }
     for (int k = 0; k < m; ++k) {
-        const CoordinateCoupler& c = at(couplers, k);
-        fd.couplerMatrix.row(k) = fd.couplerResponse.row(c.dependentU) - fd.couplerSlope[k] * fd.couplerResponse.row(c.independentU);
-        const double rate = data.u[c.independentU];
-        fd.couplerRhs[k] = c.scaleFactor * c.function.calcDerivative(data.q[c.independentQ], 2) * rate * rate -
-                           (fd.freeUdot[c.dependentU] - fd.couplerSlope[k] * fd.freeUdot[c.independentU]);
+        for (int l = 0; l < m; ++l)
+            fd.constraintMatrix(k, l) = applyRow(k, [&](int u) { return fd.constraintResponse(u, l); });
+        fd.constraintRhs[k] -= applyRow(k, [&](int u) { return fd.freeUdot[u]; });
     }
     // G A G^T is symmetric (A is); kept exactly so for the factorisation.
-    fd.couplerMatrix = 0.5 * (fd.couplerMatrix + fd.couplerMatrix.transpose()).eval();
-    fd.couplerSolver.compute(fd.couplerMatrix);
-    fd.couplerForce = fd.couplerSolver.solve(fd.couplerRhs);
-    fd.couplerTau = free.tau;
-    for (int k = 0; k < m; ++k) {
-        const CoordinateCoupler& c = at(couplers, k);
-        fd.couplerTau[c.dependentU] += fd.couplerForce[k];
-        fd.couplerTau[c.independentU] -= fd.couplerSlope[k] * fd.couplerForce[k];
-    }
-    runEvaluation({model, free.schedule, data, fd.couplerTau, free.linkForces, fd}, threads);
+    fd.constraintMatrix = 0.5 * (fd.constraintMatrix + fd.constraintMatrix.transpose()).eval();
+    fd.constraintSolver.compute(fd.constraintMatrix);
+    fd.coordinateConstraintForce = fd.constraintSolver.solve(fd.constraintRhs);
+    fd.constraintTau = free.tau;
+    for (int k = 0; k < m; ++k) addRowTranspose(k, fd.coordinateConstraintForce[k]);
+    runEvaluation({model, free.schedule, data, fd.constraintTau, free.linkForces, fd}, threads);
 }
 
 }  // namespace
@@ -852,7 +873,7 @@ void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, c
     const Evaluation e{model, schedule, data, tau, linkForces, fd};
     runEvaluation(e, threads);
     requireRegular(model, schedule, fd);
-    if (model.getNumCouplers() > 0) enforceCouplers(e, threads);
+    if (!fd.constraintU.empty()) enforceCoordinateConstraints(e, threads);
     // Virtual links take no part (their quasi-static treatment drives them).
     for (int link : schedule.getVirtualLinks()) {
         const Joint& joint = model.getJoint(link);

@@ -268,13 +268,23 @@ private:
     Eigen::VectorXd dense_[4];    // dense output coefficients of the last trial step (nq + nu each)
 };
 
-// The loop, coupler and hang velocity constraints G u = 0, one row block per loop (relative velocity of the
-// two loop points, 3 rows), a row per coupler (u_dep - s f'(q_ind) u_ind) and for the hang (the hung link's
-// angular velocity and origin velocity, 6 rows), built column by column from unit speeds. Needs
-// calcPositionKinematics in `data`.
+// The locked coordinates' indices in q (custom joints' coordinates: qdot = u).
+std::vector<int> findLockedCoordinates(const Model& model) {
+    std::vector<int> locked;
+    for (std::size_t q = 0; q < model.getCoordinates().size(); ++q)
+        if (model.getCoordinates()[q].locked) locked.push_back(static_cast<int>(q));
+    return locked;
+}
+
+// The loop, coupler, lock and hang velocity constraints G u = 0, one row block per loop (relative velocity
+// of the two loop points, 3 rows), a row per coupler (u_dep - s f'(q_ind) u_ind) and per locked coordinate
+// (its u), and for the hang (the hung link's angular velocity and origin velocity, 6 rows), built column by
+// column from unit speeds. Needs calcPositionKinematics in `data`.
 Eigen::MatrixXd calcVelocityConstraintMatrix(const Model& model, Data& data, int hangLink) {
     const int loopRows = 3 * model.getNumLoops();
-    const int rows = loopRows + model.getNumCouplers() + (hangLink >= 0 ? 6 : 0);
+    const std::vector<int> locked = findLockedCoordinates(model);
+    const int lockRows = loopRows + model.getNumCouplers();
+    const int rows = lockRows + static_cast<int>(locked.size()) + (hangLink >= 0 ? 6 : 0);
     Eigen::MatrixXd G(rows, model.getNumU());
     Eigen::VectorXd unit = Eigen::VectorXd::Zero(model.getNumU());
     auto pointVelocity = [&](int link, const Eigen::Vector3d& p_B) {
@@ -293,6 +303,10 @@ Eigen::MatrixXd calcVelocityConstraintMatrix(const Model& model, Data& data, int
             const CoordinateCoupler& c = model.getCouplers()[static_cast<std::size_t>(k)];
             G(loopRows + k, j) = (j == c.dependentU ? 1.0 : 0.0) -
                                  (j == c.independentU ? c.scaleFactor * c.function.calcDerivative(data.q[c.independentQ], 1) : 0.0);
+        }
+        for (std::size_t k = 0; k < locked.size(); ++k) {
+            const Joint& joint = model.getJoint(model.getCoordinates()[static_cast<std::size_t>(locked[k])].joint);
+            G(lockRows + static_cast<int>(k), j) = j == joint.uStart + locked[k] - joint.qStart ? 1.0 : 0.0;
         }
         if (hangLink >= 0) {
             const std::size_t h = static_cast<std::size_t>(hangLink);
@@ -353,6 +367,9 @@ double calcConstraintViolation(const Model& model, Data& data, const Eigen::Vect
     }
     for (const CoordinateCoupler& c : model.getCouplers())
         worst = std::max(worst, std::abs(q[c.dependentQ] - c.scaleFactor * c.function.calcValue(q[c.independentQ])));
+    for (std::size_t i = 0; i < model.getCoordinates().size(); ++i)
+        if (model.getCoordinates()[i].locked)
+            worst = std::max(worst, std::abs(q[static_cast<Eigen::Index>(i)] - model.getCoordinates()[i].defaultValue));
     if (hangLink >= 0) worst = std::max(worst, (data.p_GB[static_cast<std::size_t>(hangLink)] - p_GH).norm());
     return worst;
 }

@@ -6,7 +6,7 @@
 #include "sinew/core/data.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/kinematics.hpp"
-#include "sinew/plugin/coupler_constraint.hpp"
+#include "sinew/plugin/coordinate_constraints.hpp"
 #include "sinew/plugin/custom_mobilizer.hpp"
 
 namespace sinew {
@@ -83,6 +83,8 @@ SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
                 .getConstraintIndex());
     for (const CoordinateCoupler& coupler : model_.getCouplers())
         addCouplerConstraint(*matter_, model_, coupler, mobilizedBodies_);
+    for (int q = 0; q < model_.getNumQ(); ++q)
+        if (model_.getCoordinates()[static_cast<std::size_t>(q)].locked) addLockConstraint(*matter_, model_, q, mobilizedBodies_);
 
     if (!options.hangBy.empty()) {
         const int link = model_.findLinkIndex(options.hangBy);

@@ -1,7 +1,7 @@
 #pragma once
 // Coupled coordinates (OpenSim's CoordinateCouplerConstraint, Model::getCouplers): putting a pose on the
 // constraint manifold. Both engines enforce couplers in forward dynamics (calcForwardDynamics; Simbody's
-// Constraint::CoordinateCoupler, sinew/plugin/coupler_constraint.hpp).
+// Constraint::CoordinateCoupler, sinew/plugin/coordinate_constraints.hpp).
 #include <Eigen/Core>
 
 #include "sinew/core/model.hpp"

@@ -55,23 +55,26 @@ struct ForwardDynamicsData {
     // joint's point.
     std::vector<SpatialVector> handleForce;
 
-    // Coordinate couplers (Model::getCouplers, m of them), enforced by multipliers on top of the loops'
-    // solve (docs/closed-chain.md, "Couplers"): G's rows, the udot per unit multiplier (nu x m), G A G^T and
-    // its factorisation, the free udot, the right-hand side, and tau + G^T lambda.
-    Eigen::VectorXd couplerSlope;  // (m) s f'(q_independent)
-    Eigen::MatrixXd couplerResponse;
-    Eigen::MatrixXd couplerMatrix;
-    Eigen::LDLT<Eigen::MatrixXd> couplerSolver;
-    Eigen::VectorXd freeUdot, couplerRhs, couplerTau;
+    // Coordinate constraints, enforced by multipliers on top of the loops' solve (docs/closed-chain.md,
+    // "Coordinate constraints"): the couplers (Model::getCouplers) then the locked coordinates (in q order), m
+    // in all. Per row: the speed it constrains and the coupler's independent speed (-1 for a lock), fixed
+    // per model; s f'(q_ind) and the acceleration right-hand side; the udot per unit multiplier (nu x m),
+    // G A G^T and its factorisation, the free udot, and tau + G^T lambda.
+    std::vector<int> constraintU, constraintOtherU;
+    Eigen::VectorXd constraintSlope, constraintRhs;
+    Eigen::MatrixXd constraintResponse;
+    Eigen::MatrixXd constraintMatrix;
+    Eigen::LDLT<Eigen::MatrixXd> constraintSolver;
+    Eigen::VectorXd freeUdot, constraintTau;
 
     // Outputs.
     Eigen::VectorXd udot;  // (nu) generalized accelerations; 0 for virtual links' joints
     // (numBodies) spatial accelerations about each body's reference point jointPoint[b], ground axes
     std::vector<SpatialVector> bodyAcceleration;
     std::vector<Eigen::Vector3d> loopForce;    // (numLoops) N, force on link B at the loop point, in ground
-    // (m) each coupler's multiplier lambda: the generalized force it applies to its dependent coordinate (N m
-    // or N); the independent coordinate gets -s f'(q) lambda.
-    Eigen::VectorXd couplerForce;
+    // (m) each coordinate constraint's multiplier lambda, in constraintU's order: the generalized force it
+    // applies to the coordinate it constrains (N m or N); a coupler's independent coordinate gets -s f'(q) lambda.
+    Eigen::VectorXd coordinateConstraintForce;
     SpatialVector hangForce = SpatialVector::Zero();  // holding the hung link: [moment about its origin; force]
     // Constraint directions that repeat others (e.g. a second ball loop on the axis of a hinge): solved in
     // the least-squares sense, accelerations exact, the loop forces along them minimum-norm.
@@ -86,8 +89,9 @@ struct ForwardDynamicsData {
 // calcPositionKinematics and calcVelocityKinematics in `data`. `threads` > 1 shares each level of the
 // schedule between threads (useful with a Balanced schedule); the answer does not depend on it. Virtual
 // links take no part (see AssemblySchedule): their joints' udot is 0, and forces on them in `linkForces`
-// are ignored. Coordinate couplers hold at the acceleration level (q_dep'' = d^2/dt^2 s f(q_ind)), at the
-// cost of m + 2 more passes for m couplers (docs/closed-chain.md, "Couplers"). Throws sinew::Error naming
+// are ignored. Couplers and locked coordinates hold at the acceleration level (q_dep'' = d^2/dt^2 s f(q_ind);
+// a locked coordinate's udot = 0), at the cost of m + 2 more passes for m of them (docs/closed-chain.md,
+// "Coordinate constraints"). Throws sinew::Error naming
 // the joint where the mass matrix is singular (a point mass at a ball joint's centre, say).
 void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, const Data& data,
                          const Eigen::VectorXd& tau, const std::vector<SpatialVector>& linkForces,

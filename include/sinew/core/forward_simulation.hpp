@@ -47,8 +47,8 @@ long checkSimulationOptions(const ForwardSimulationOptions& options);
 double getReportTime(const ForwardSimulationOptions& options, long i);
 
 // Largest position-constraint violation at q, m: over the loops the gap |p_A - p_B| between the two loop
-// points, over the couplers |q_dep - s f(q_ind)| (rad or m), and for hangLink >= 0 the distance of that
-// link's origin from p_GH, where it was hung. Runs
+// points, over the couplers |q_dep - s f(q_ind)| and the locked coordinates |q - default| (rad or m), and
+// for hangLink >= 0 the distance of that link's origin from p_GH, where it was hung. Runs
 // calcPositionKinematics into `data`.
 double calcConstraintViolation(const Model& model, Data& data, const Eigen::VectorXd& q, int hangLink = -1,
                                const Eigen::Vector3d& p_GH = Eigen::Vector3d::Zero());

@@ -59,7 +59,10 @@ struct Coordinate {
     double defaultValue = 0;  // rad or m (a quaternion entry for ball/free), the model's default q
     double rangeMin = -std::numeric_limits<double>::infinity();  // rad or m
     double rangeMax = std::numeric_limits<double>::infinity();
-    bool clamped = false;  // OpenSim's flags, kept for importers and writers; the algorithms ignore them
+    // OpenSim's flags. Forward dynamics holds a locked coordinate at its default value, as OpenSim's lock (a
+    // prescribed constant) does; inverse dynamics ignores the lock, as OpenSim's does. `clamped` is kept for
+    // importers and writers.
+    bool clamped = false;
     bool locked = false;
 };
 

@@ -1,7 +1,7 @@
 #pragma once
 // Builds a SimTK::MultibodySystem from a sinew Model: one MobilizedBody per link (Free, Ball, Pin, Weld
 // mobilizers, in the model's order so Simbody's q and u are sinew's), Constraint::Ball loop closures,
-// Constraint::CoordinateCoupler couplers, gravity, and one WireForce (Force::Custom) per wire, every path sinew's core computes included (wraps,
+// Constraint::CoordinateCoupler couplers, locked coordinates as Constraint::PrescribedMotion, gravity, and one WireForce (Force::Custom) per wire, every path sinew's core computes included (wraps,
 // conditional and moving points), all evaluated once per state by a SimbodyWirePaths subsystem. Virtual
 // links are massless, which Simbody's bodies cannot be: they get no mobilized body, and the wires through
 // them one VirtualLinkWireForce that holds them in quasi-static equilibrium. Virtual links come last in the

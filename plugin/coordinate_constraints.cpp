@@ -1,4 +1,6 @@
-#include "sinew/plugin/coupler_constraint.hpp"
+#include "sinew/plugin/coordinate_constraints.hpp"
+
+#include <utility>
 
 namespace sinew {
 namespace {
@@ -26,17 +28,33 @@ private:
 
 }  // namespace
 
+// A coordinate's mobilized body and its index among that mobilizer's q.
+std::pair<SimTK::MobilizedBodyIndex, SimTK::MobilizerQIndex> locateCoordinate(
+    const Model& model, int q, const std::vector<SimTK::MobilizedBodyIndex>& mobilizedBodies) {
+    const int link = model.getCoordinates()[static_cast<std::size_t>(q)].joint;
+    return {mobilizedBodies[static_cast<std::size_t>(link)], SimTK::MobilizerQIndex(q - model.getJoint(link).qStart)};
+}
+
 SimTK::ConstraintIndex addCouplerConstraint(SimTK::SimbodyMatterSubsystem& matter, const Model& model,
                                             const CoordinateCoupler& coupler,
                                             const std::vector<SimTK::MobilizedBodyIndex>& mobilizedBodies) {
     SimTK::Array_<SimTK::MobilizedBodyIndex> bodies;
     SimTK::Array_<SimTK::MobilizerQIndex> indices;
     for (int q : {coupler.dependentQ, coupler.independentQ}) {
-        const int link = model.getCoordinates()[static_cast<std::size_t>(q)].joint;
-        bodies.push_back(mobilizedBodies[static_cast<std::size_t>(link)]);
-        indices.push_back(SimTK::MobilizerQIndex(q - model.getJoint(link).qStart));
+        const auto [body, index] = locateCoordinate(model, q, mobilizedBodies);
+        bodies.push_back(body);
+        indices.push_back(index);
     }
     return SimTK::Constraint::CoordinateCoupler(matter, new CouplerFunction(coupler), bodies, indices).getConstraintIndex();
+}
+
+SimTK::ConstraintIndex addLockConstraint(SimTK::SimbodyMatterSubsystem& matter, const Model& model, int q,
+                                         const std::vector<SimTK::MobilizedBodyIndex>& mobilizedBodies) {
+    const auto [body, index] = locateCoordinate(model, q, mobilizedBodies);
+    const double value = model.getCoordinates()[static_cast<std::size_t>(q)].defaultValue;
+    return SimTK::Constraint::PrescribedMotion(matter, new SimTK::Function::Constant(value),  // takes ownership
+                                               body, index)
+        .getConstraintIndex();
 }
 
 }  // namespace sinew
