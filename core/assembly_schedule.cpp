@@ -50,8 +50,8 @@ AssemblySchedule::AssemblySchedule(const Model& model, Kind kind, int hangLink) 
     // The balanced schedule starts from every body's own inverse inertia, which a point mass has not.
     if (const int body = findPointMassBody(); kind == Kind::Balanced && body >= 0)
         throw Error("model '" + model.getName() + "': link '" + model.getLink(bodies_[static_cast<std::size_t>(body)].links.front()).name +
-                    "' is a point mass (no rotational inertia): the balanced schedule inverts every body's inertia; "
-                    "use the serial schedule");
+                    "' is a point mass or massless (no rotational inertia): the balanced schedule inverts every "
+                    "body's inertia; use the serial schedule");
     const int numTreeJoints = static_cast<int>(joints_.size());
     addLoopJoints(model);
     addHangJoint(model, hangLink);
@@ -210,7 +210,7 @@ void AssemblySchedule::buildBodies(const Model& model) {
             body.mass += info.mass;
             body.com += info.mass * (p_1L[static_cast<std::size_t>(link)] + R_1L[static_cast<std::size_t>(link)] * info.com_B);
         }
-        body.com /= body.mass;
+        if (body.mass > 0) body.com /= body.mass;  // a massless body's centre is its origin
         for (int link : body.links) {
             const Link& info = model.getLink(link);
             const Eigen::Matrix3d& R = R_1L[static_cast<std::size_t>(link)];

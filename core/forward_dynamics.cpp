@@ -798,10 +798,10 @@ void runEvaluation(const Evaluation& e, int threads) {
     }
 }
 
-// Throws, naming the first joint whose motion no inertia resisted (a point mass at a ball's centre...): u̇
-// would be infinite there.
+// Throws, naming a joint whose motion no inertia resisted (a point mass at a ball's centre...): u̇ would be
+// infinite there. The outermost such joint: its NaNs spread to the joints inboard of it.
 void requireRegular(const Model& model, const AssemblySchedule& schedule, const ForwardDynamicsData& fd) {
-    for (std::size_t j = 0; j < fd.singular.size(); ++j) {
+    for (std::size_t j = fd.singular.size(); j-- > 0;) {
         if (!fd.singular[j]) continue;
         const AssemblyJoint& aj = schedule.getJoints()[j];
         const std::string link = model.getLink(aj.index).name;

@@ -238,17 +238,15 @@ WireWrap buildWireWrap(const WireWrapSpec& wr, const std::string& where, const s
     return wrap;
 }
 
-void checkMassProperties(const LinkSpec& link, bool welded) {
+// A massless link is accepted wherever it is, as OpenSim and Simbody accept one (a wrist's intermediate
+// body between two pins); forward dynamics names the joint where it leaves the mass matrix singular.
+void checkMassProperties(const LinkSpec& link) {
     if (!std::isfinite(link.mass)) throw ModelError(link.where, "link '" + link.name + "': mass must be finite");
     requireFinite(link.where, "link '" + link.name + "': com", link.com_B);
     requireFinite(link.where, "link '" + link.name + "': inertia", link.inertia_Bcom);
     if (link.mass < 0) throw ModelError(link.where, "link '" + link.name + "': mass must be >= 0");
     const Eigen::Matrix3d& I = link.inertia_Bcom;
     if (link.mass == 0) {
-        if (!welded)
-            throw ModelError(link.where, "link '" + link.name +
-                                             "': a massless link must be welded to its parent (use a virtual link "
-                                             "for a massless 6-DOF link)");
         if (!I.isZero(0))
             throw ModelError(link.where, "link '" + link.name + "': a massless link must have zero inertia");
         return;
@@ -454,7 +452,7 @@ void ModelBuilder::Compilation::checkLinks() {
         if (it == jointOfChild.end())
             throw ModelError(ls.where, "link '" + ls.name + "' has no joint (every link needs one joint to its "
                                        "parent or to ground)");
-        checkMassProperties(ls, specs.joints_[it->second].type == JointType::Weld);
+        checkMassProperties(ls);
     }
 }
 

@@ -276,11 +276,6 @@ TEST(ModelFileErrors, LinkWithoutJoint) {
     EXPECT_TRUE(rejectsAt(modelWith({{kLower, followedBy(kLower, hand)}}), kLower + 1, {"link 'hand'", "no joint"}));
 }
 
-TEST(ModelFileErrors, MasslessLinkNotWelded) {
-    EXPECT_TRUE(rejectsLine(kLower, entry("name: lower, mass: 0, inertia: [0, 0, 0, 0, 0, 0]"),
-                            {"link 'lower'", "massless", "welded"}));
-}
-
 TEST(ModelFileErrors, WirePointOnGround) {
     EXPECT_TRUE(rejectsLine(kPoint0, point("link: ground, at: [0, 0, 0]"), {"wire 'biceps'", "ground"}));
 }

@@ -297,6 +297,40 @@ joints:
     EXPECT_EQ(AssemblySchedule(model).getKind(), AssemblySchedule::Kind::Serial);
 }
 
+// A wrist as OpenSim models often build one: a massless intermediate body between two pins (flexion, then
+// deviation), the hand beyond it. Non-singular, since the hand's inertia resists both pins: it agrees with
+// Simbody. Without the hand, the massless link ends the chain and the error names its joint.
+TEST(ForwardDynamics, MasslessIntermediateBodyMatchesSimbodyAndAMasslessEndIsNamed) {
+    const std::string wrist = R"(sinew_model: 1
+name: wrist
+links:
+  - {name: forearm, mass: 1.2, com: [0, -0.12, 0], inertia: [0.006, 0.001, 0.006, 0, 0, 0]}
+  - {name: lunate, mass: 0, inertia: [0, 0, 0, 0, 0, 0]}
+  - {name: hand, mass: 0.45, com: [0.01, -0.07, 0.005], inertia: [0.0009, 0.0003, 0.0008, 0, 0, 0]}
+joints:
+  - {name: elbow, type: pin, parent: ground, child: forearm, axis: [0, 0, 1]}
+  - {name: flexion, type: pin, parent: forearm, child: lunate, parent_point: [0, -0.25, 0], axis: [0, 0, 1]}
+  - {name: deviation, type: pin, parent: lunate, child: hand, axis: [1, 0, 0]}
+)";
+    const Model model = readModelText(wrist, "wrist.yaml");
+    std::mt19937 rng(42);
+    for (int i = 0; i < 10; ++i) EXPECT_LE(compareWithSimbody(model, rng).udotError, 1e-9);
+    const std::string withoutHand = wrist.substr(0, wrist.find("  - {name: hand")) +
+                                    wrist.substr(wrist.find("joints:"), wrist.find("  - {name: deviation") - wrist.find("joints:"));
+    const Model bare = readModelText(withoutHand, "wrist.yaml");
+    Data data(bare);
+    calcPositionKinematics(bare, data, bare.getDefaultQ());
+    calcVelocityKinematics(bare, data, Eigen::VectorXd::Zero(bare.getNumU()));
+    const AssemblySchedule schedule(bare);
+    ForwardDynamicsData fd(bare, schedule);
+    EXPECT_TRUE(test::throwsErrorAt(
+        [&] {
+            calcForwardDynamics(bare, schedule, data, Eigen::VectorXd::Zero(bare.getNumU()),
+                                std::vector<SpatialVector>(2, SpatialVector::Zero()), fd);
+        },
+        "model 'wrist'", {"singular", "joint 'flexion'", "link 'lunate'"}, withoutHand));
+}
+
 TEST(ForwardDynamics, MatchesSimbodyOnArm26) {
     std::mt19937 rng(32);
     EXPECT_LE(compareWithSimbody(test::loadArm26().model, rng).udotError, 1e-9);

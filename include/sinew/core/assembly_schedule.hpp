@@ -131,7 +131,7 @@ private:
     void addHangJoint(const Model& model, int hangLink);
     void chooseTreeOperations(const Model& model, int hangLink);
     void buildLeaves(int numTreeJoints);
-    // A body whose central inertia is singular (point masses: mass without rotational inertia), or -1.
+    // A body whose central inertia is singular (point masses, massless bodies), or -1.
     int findPointMassBody() const;
     void scheduleSerial(int numTreeJoints);
     void scheduleBalanced(int numTreeJoints);
