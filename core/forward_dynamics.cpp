@@ -734,7 +734,7 @@ ForwardDynamicsData::ForwardDynamicsData(const Model& model, const AssemblySched
     constraintSlope = Eigen::VectorXd::Zero(m);
     constraintResponse = Eigen::MatrixXd::Zero(model.getNumU(), m);
     constraintMatrix = Eigen::MatrixXd::Zero(m, m);
-    constraintSolver = Eigen::LDLT<Eigen::MatrixXd>(m);
+    constraintSolver.compute(constraintMatrix);  // sizes its storage and sets its status (copies read it)
     freeUdot = Eigen::VectorXd::Zero(model.getNumU());
     constraintRhs = Eigen::VectorXd::Zero(m);
     constraintTau = Eigen::VectorXd::Zero(model.getNumU());
