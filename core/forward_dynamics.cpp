@@ -366,7 +366,7 @@ struct Evaluation {
                 // complement C - B^T A^-1 B, and pa = [R tau; ...]: 3 x 3 blocks only.
                 const Eigen::Matrix3d B = I.topRightCorner<3, 3>();
                 const Eigen::Matrix3d& Ainv = at(fd.rotationalInverse, j) = I.topLeftCorner<3, 3>().inverse();
-                at(fd.singular, j) = !Ainv.allFinite();
+                at(fd.singular, j) = !std::isfinite(Ainv.trace());  // a singular A's inverse is inf or NaN throughout
                 const Eigen::Matrix3d BtAinv = B.transpose() * Ainv;
                 // Kept exactly symmetric: the roundoff asymmetry of B^T A^-1 B grows geometrically along
                 // chains of ball joints (1e-8 relative after 40 links, NaN after 127).
@@ -485,7 +485,7 @@ struct Evaluation {
     void leaf(int o) const {
         const int body = operation(o).first;
         const Matrix6d& G = at(fd.inverseInertia, body) = invertInertia(at(fd.articulatedInertia, body));
-        at(fd.singular, body) = !G.allFinite();  // body b's inboard joint is assembly joint b
+        at(fd.singular, body) = !std::isfinite(G.trace());  // body b's inboard joint is assembly joint b
         const SpatialVector a0 = -G * at(fd.articulatedBias, body);
         const std::vector<int>& handles = schedule.getHandles(body);
         const HandleEquations leafEquations = handleEquations(body);  // the body's leaf subassembly
