@@ -121,6 +121,38 @@ TEST(OsimQuirks, AMasslessBodyGivenInertiaGetsNone) {
     EXPECT_TRUE(hasLineWith(conversion.warnings, "Body 'tip'", "massless but with non-zero inertia"));
 }
 
+// A wrist as OpenSim models build one: a massless intermediate body between the flexion and deviation
+// pins. OpenSim and Simbody take it (the hand beyond it keeps the system regular), and so does sinew: the
+// body stays massless, on a joint of its own.
+TEST(OsimQuirks, AMasslessIntermediateBodyIsKept) {
+    const std::string path = writeTestFile(R"(<?xml version="1.0" encoding="UTF-8" ?>
+<OpenSimDocument Version="40000">
+  <Model name="wrist">
+    <Ground name="ground"/>
+    <gravity>0 -9.81 0</gravity>
+    <BodySet name="bodyset"><objects>
+      <Body name="lunate"><mass>0</mass><inertia>0 0 0 0 0 0</inertia></Body>
+      <Body name="hand"><mass>0.45</mass><mass_center>0.01 -0.07 0</mass_center><inertia>0.0009 0.0003 0.0008 0 0 0</inertia></Body>
+    </objects></BodySet>
+    <JointSet name="jointset"><objects>
+      <PinJoint name="flexion"><socket_parent_frame>/ground</socket_parent_frame><socket_child_frame>/bodyset/lunate</socket_child_frame>
+        <coordinates><Coordinate name="flex"/></coordinates>
+      </PinJoint>
+      <PinJoint name="deviation"><socket_parent_frame>/bodyset/lunate</socket_parent_frame><socket_child_frame>/bodyset/hand</socket_child_frame>
+        <coordinates><Coordinate name="dev"/></coordinates>
+      </PinJoint>
+    </objects></JointSet>
+  </Model>
+</OpenSimDocument>
+)");
+    const Model model = loadModel(path, {});
+    const Link& lunate = model.getLinks()[static_cast<std::size_t>(findLink(model, "lunate"))];
+    EXPECT_EQ(lunate.mass, 0);
+    EXPECT_TRUE(lunate.inertia_Bcom.isZero(0));
+    EXPECT_EQ(model.getJoint(findLink(model, "lunate")).type, JointType::Custom);
+    EXPECT_EQ(model.getNumU(), 2);
+}
+
 TEST(OsimQuirks, AMuscleAnchoredToGroundKeepsItsWorldPoint) {
     const std::string path = writeTestFile(makeModel("0.01 0.02 0.025 0 0 0"));
     std::vector<std::string> notes;
