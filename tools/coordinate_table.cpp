@@ -58,6 +58,13 @@ void convertQuaternionRates(const Model& model, CoordinateTrajectory& trajectory
     trajectory.qddot = std::move(udot);
 }
 
+// Whether coordinate q's column of `table` holds degrees. OpenSim converts only rotational coordinates
+// (Storage conversion by Coordinate::getMotionType); a quaternion's components are no angles.
+bool isInDegrees(const Model& model, const StorageTable& table, int q) {
+    return table.inDegrees && model.getCoordinates()[static_cast<std::size_t>(q)].motionType == MotionType::Rotational &&
+           !isQuaternionComponent(model, q);
+}
+
 }  // namespace
 
 CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& table) {
@@ -75,11 +82,7 @@ CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& 
     samples.where = table.where;
     for (Eigen::Index c = 0; c < n; ++c) {
         const std::size_t column = static_cast<std::size_t>(columnOf[static_cast<std::size_t>(c)]);
-        // OpenSim converts only rotational coordinates (Storage conversion by Coordinate::getMotionType); a
-        // quaternion's components are no angles.
-        const Coordinate& coordinate = coordinates[static_cast<std::size_t>(c)];
-        const bool degrees = table.inDegrees && coordinate.motionType == MotionType::Rotational &&
-                             !isQuaternionComponent(model, static_cast<int>(c));
+        const bool degrees = isInDegrees(model, table, static_cast<int>(c));
         for (Eigen::Index r = 0; r < rows; ++r)
             samples.q(r, c) = table.rows[static_cast<std::size_t>(r)][column] * (degrees ? M_PI / 180 : 1.0);
     }
@@ -99,9 +102,7 @@ StorageTable completeCoordinateTable(const Model& model, const StorageTable& tab
         const auto found = std::find(table.columns.begin(), table.columns.end(), coordinate.name);
         double held = coordinate.defaultValue;
         if (found == table.columns.end()) {
-            if (table.inDegrees && coordinate.motionType == MotionType::Rotational &&
-                !isQuaternionComponent(model, static_cast<int>(c)))
-                held *= 180 / M_PI;
+            if (isInDegrees(model, table, static_cast<int>(c))) held *= 180 / M_PI;
             if (notes)
                 notes("coordinate '" + coordinate.name + "' is not in " + source + ": held at its default value " +
                       std::to_string(coordinate.defaultValue) + " (as OpenSim's tools do)");
