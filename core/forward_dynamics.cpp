@@ -719,18 +719,8 @@ ForwardDynamicsData::ForwardDynamicsData(const Model& model, const AssemblySched
     udot = Eigen::VectorXd::Zero(model.getNumU());
     bodyAcceleration.assign(bodies, SpatialVector::Zero());
     loopForce.assign(static_cast<std::size_t>(model.getNumLoops()), Eigen::Vector3d::Zero());
-    for (const CoordinateCoupler& c : model.getCouplers()) {
-        constraintU.push_back(c.dependentU);
-        constraintOtherU.push_back(c.independentU);
-    }
-    for (std::size_t q = 0; q < model.getCoordinates().size(); ++q) {
-        const Coordinate& coordinate = model.getCoordinates()[q];
-        if (!coordinate.locked) continue;
-        const Joint& joint = model.getJoint(coordinate.joint);  // a custom joint: qdot = u
-        constraintU.push_back(joint.uStart + static_cast<int>(q) - joint.qStart);
-        constraintOtherU.push_back(-1);
-    }
-    const Eigen::Index m = static_cast<Eigen::Index>(constraintU.size());
+    constraints = getCoordinateConstraints(model);
+    const Eigen::Index m = static_cast<Eigen::Index>(constraints.size());
     constraintSlope = Eigen::VectorXd::Zero(m);
     constraintResponse = Eigen::MatrixXd::Zero(model.getNumU(), m);
     constraintMatrix = Eigen::MatrixXd::Zero(m, m);
@@ -822,25 +812,26 @@ void enforceCoordinateConstraints(const Evaluation& free, int threads) {
     const Model& model = free.model;
     const Data& data = free.data;
     ForwardDynamicsData& fd = free.fd;
-    const std::vector<CoordinateCoupler>& couplers = model.getCouplers();
-    const int m = static_cast<int>(fd.constraintU.size());
-    fd.constraintRhs.setZero();  // a lock's: udot = 0
-    for (int k = 0; k < model.getNumCouplers(); ++k) {
-        const CoordinateCoupler& c = at(couplers, k);
+    const int m = static_cast<int>(fd.constraints.size());
+    for (int k = 0; k < m; ++k) {
+        const CoordinateConstraint& row = at(fd.constraints, k);
+        fd.constraintSlope[k] = calcCoordinateConstraintSlope(model, row, data.q);
+        fd.constraintRhs[k] = 0;  // a lock's: udot = 0
+        if (row.coupler < 0) continue;
+        const CoordinateCoupler& c = at(model.getCouplers(), row.coupler);
         const double rate = data.u[c.independentU];
-        fd.constraintSlope[k] = c.scaleFactor * c.function.calcDerivative(data.q[c.independentQ], 1);
         fd.constraintRhs[k] = c.scaleFactor * c.function.calcDerivative(data.q[c.independentQ], 2) * rate * rate;
     }
     // G_k v for a vector v (nu) or a row of a matrix.
     auto applyRow = [&](int k, const auto& v) {
-        const int other = at(fd.constraintOtherU, k);
-        return other < 0 ? v(at(fd.constraintU, k)) : v(at(fd.constraintU, k)) - fd.constraintSlope[k] * v(other);
+        const CoordinateConstraint& row = at(fd.constraints, k);
+        return row.otherSpeed < 0 ? v(row.speed) : v(row.speed) - fd.constraintSlope[k] * v(row.otherSpeed);
     };
     // tau += G_k^T scale.
     auto addRowTranspose = [&](int k, double scale) {
-        fd.constraintTau[at(fd.constraintU, k)] += scale;
-        const int other = at(fd.constraintOtherU, k);
-        if (other >= 0) fd.constraintTau[other] -= fd.constraintSlope[k] * scale;
+        const CoordinateConstraint& row = at(fd.constraints, k);
+        fd.constraintTau[row.speed] += scale;
+        if (row.otherSpeed >= 0) fd.constraintTau[row.otherSpeed] -= fd.constraintSlope[k] * scale;
     };
     fd.freeUdot = fd.udot;
     for (int k = 0; k < m; ++k) {
@@ -873,7 +864,7 @@ void calcForwardDynamics(const Model& model, const AssemblySchedule& schedule, c
     const Evaluation e{model, schedule, data, tau, linkForces, fd};
     runEvaluation(e, threads);
     requireRegular(model, schedule, fd);
-    if (!fd.constraintU.empty()) enforceCoordinateConstraints(e, threads);
+    if (!fd.constraints.empty()) enforceCoordinateConstraints(e, threads);
     // Virtual links take no part (their quasi-static treatment drives them).
     for (int link : schedule.getVirtualLinks()) {
         const Joint& joint = model.getJoint(link);

@@ -268,24 +268,15 @@ private:
     Eigen::VectorXd dense_[4];    // dense output coefficients of the last trial step (nq + nu each)
 };
 
-// The locked coordinates' indices in q (custom joints' coordinates: qdot = u).
-std::vector<int> findLockedCoordinates(const Model& model) {
-    std::vector<int> locked;
-    for (std::size_t q = 0; q < model.getCoordinates().size(); ++q)
-        if (model.getCoordinates()[q].locked) locked.push_back(static_cast<int>(q));
-    return locked;
-}
-
-// The loop, coupler, lock and hang velocity constraints G u = 0, one row block per loop (relative velocity
-// of the two loop points, 3 rows), a row per coupler (u_dep - s f'(q_ind) u_ind) and per locked coordinate
-// (its u), and for the hang (the hung link's angular velocity and origin velocity, 6 rows), built column by
-// column from unit speeds. Needs calcPositionKinematics in `data`.
+// The loop, coordinate and hang velocity constraints G u = 0: one row block per loop (relative velocity of
+// the two loop points, 3 rows) and for the hang (the hung link's angular velocity and origin velocity, 6
+// rows), built column by column from unit speeds, and a row per coupler or lock (getCoordinateConstraints).
+// Needs calcPositionKinematics in `data`.
 Eigen::MatrixXd calcVelocityConstraintMatrix(const Model& model, Data& data, int hangLink) {
     const int loopRows = 3 * model.getNumLoops();
-    const std::vector<int> locked = findLockedCoordinates(model);
-    const int lockRows = loopRows + model.getNumCouplers();
-    const int rows = lockRows + static_cast<int>(locked.size()) + (hangLink >= 0 ? 6 : 0);
-    Eigen::MatrixXd G(rows, model.getNumU());
+    const std::vector<CoordinateConstraint> constraints = getCoordinateConstraints(model);
+    const int rows = loopRows + static_cast<int>(constraints.size()) + (hangLink >= 0 ? 6 : 0);
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(rows, model.getNumU());
     Eigen::VectorXd unit = Eigen::VectorXd::Zero(model.getNumU());
     auto pointVelocity = [&](int link, const Eigen::Vector3d& p_B) {
         const std::size_t b = static_cast<std::size_t>(link);
@@ -299,20 +290,17 @@ Eigen::MatrixXd calcVelocityConstraintMatrix(const Model& model, Data& data, int
             const Loop& loop = model.getLoop(k);
             G.block<3, 1>(3 * k, j) = pointVelocity(loop.linkA, loop.p_A) - pointVelocity(loop.linkB, loop.p_B);
         }
-        for (int k = 0; k < model.getNumCouplers(); ++k) {
-            const CoordinateCoupler& c = model.getCouplers()[static_cast<std::size_t>(k)];
-            G(loopRows + k, j) = (j == c.dependentU ? 1.0 : 0.0) -
-                                 (j == c.independentU ? c.scaleFactor * c.function.calcDerivative(data.q[c.independentQ], 1) : 0.0);
-        }
-        for (std::size_t k = 0; k < locked.size(); ++k) {
-            const Joint& joint = model.getJoint(model.getCoordinates()[static_cast<std::size_t>(locked[k])].joint);
-            G(lockRows + static_cast<int>(k), j) = j == joint.uStart + locked[k] - joint.qStart ? 1.0 : 0.0;
-        }
         if (hangLink >= 0) {
             const std::size_t h = static_cast<std::size_t>(hangLink);
             G.block<3, 1>(rows - 6, j) = data.w_GB[h];
             G.block<3, 1>(rows - 3, j) = data.v_GB[h];
         }
+    }
+    for (std::size_t k = 0; k < constraints.size(); ++k) {
+        const CoordinateConstraint& row = constraints[k];
+        const int r = loopRows + static_cast<int>(k);
+        G(r, row.speed) = 1;
+        if (row.otherSpeed >= 0) G(r, row.otherSpeed) -= calcCoordinateConstraintSlope(model, row, data.q);
     }
     return G;
 }
@@ -365,11 +353,9 @@ double calcConstraintViolation(const Model& model, Data& data, const Eigen::Vect
         const Eigen::Vector3d p_GB = data.p_GB[b] + data.R_GB[b] * loop.p_B;
         worst = std::max(worst, (p_GA - p_GB).norm());
     }
-    for (const CoordinateCoupler& c : model.getCouplers())
-        worst = std::max(worst, std::abs(q[c.dependentQ] - c.scaleFactor * c.function.calcValue(q[c.independentQ])));
-    for (std::size_t i = 0; i < model.getCoordinates().size(); ++i)
-        if (model.getCoordinates()[i].locked)
-            worst = std::max(worst, std::abs(q[static_cast<Eigen::Index>(i)] - model.getCoordinates()[i].defaultValue));
+    forEachCoordinateConstraint(model, [&](const CoordinateConstraint& constraint) {
+        worst = std::max(worst, std::abs(calcCoordinateConstraintGap(model, constraint, q)));
+    });
     if (hangLink >= 0) worst = std::max(worst, (data.p_GB[static_cast<std::size_t>(hangLink)] - p_GH).norm());
     return worst;
 }

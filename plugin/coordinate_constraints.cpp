@@ -26,14 +26,14 @@ private:
     double scale_;
 };
 
-}  // namespace
-
 // A coordinate's mobilized body and its index among that mobilizer's q.
 std::pair<SimTK::MobilizedBodyIndex, SimTK::MobilizerQIndex> locateCoordinate(
     const Model& model, int q, const std::vector<SimTK::MobilizedBodyIndex>& mobilizedBodies) {
     const int link = model.getCoordinates()[static_cast<std::size_t>(q)].joint;
     return {mobilizedBodies[static_cast<std::size_t>(link)], SimTK::MobilizerQIndex(q - model.getJoint(link).qStart)};
 }
+
+}  // namespace
 
 SimTK::ConstraintIndex addCouplerConstraint(SimTK::SimbodyMatterSubsystem& matter, const Model& model,
                                             const CoordinateCoupler& coupler,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sinew/core/assembly_schedule.hpp"
+#include "sinew/core/coordinate_coupler.hpp"
 #include "sinew/core/data.hpp"
 #include "sinew/core/model.hpp"
 #include "sinew/core/spatial.hpp"
@@ -55,12 +56,11 @@ struct ForwardDynamicsData {
     // joint's point.
     std::vector<SpatialVector> handleForce;
 
-    // Coordinate constraints, enforced by multipliers on top of the loops' solve (docs/closed-chain.md,
-    // "Coordinate constraints"): the couplers (Model::getCouplers) then the locked coordinates (in q order), m
-    // in all. Per row: the speed it constrains and the coupler's independent speed (-1 for a lock), fixed
-    // per model; s f'(q_ind) and the acceleration right-hand side; the udot per unit multiplier (nu x m),
+    // Coordinate constraints (getCoordinateConstraints: the couplers, then the locked coordinates), m in all,
+    // enforced by multipliers on top of the loops' solve (docs/closed-chain.md, "Coordinate constraints").
+    // Per row: s f'(q_ind) and the acceleration right-hand side; the udot per unit multiplier (nu x m),
     // G A G^T and its factorisation, the free udot, and tau + G^T lambda.
-    std::vector<int> constraintU, constraintOtherU;
+    std::vector<CoordinateConstraint> constraints;
     Eigen::VectorXd constraintSlope, constraintRhs;
     Eigen::MatrixXd constraintResponse;
     Eigen::MatrixXd constraintMatrix;
@@ -72,7 +72,7 @@ struct ForwardDynamicsData {
     // (numBodies) spatial accelerations about each body's reference point jointPoint[b], ground axes
     std::vector<SpatialVector> bodyAcceleration;
     std::vector<Eigen::Vector3d> loopForce;    // (numLoops) N, force on link B at the loop point, in ground
-    // (m) each coordinate constraint's multiplier lambda, in constraintU's order: the generalized force it
+    // (m) each coordinate constraint's multiplier lambda, in `constraints`' order: the generalized force it
     // applies to the coordinate it constrains (N m or N); a coupler's independent coordinate gets -s f'(q) lambda.
     Eigen::VectorXd coordinateConstraintForce;
     SpatialVector hangForce = SpatialVector::Zero();  // holding the hung link: [moment about its origin; force]
