@@ -4,6 +4,10 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "conversion_notes.hpp"
 #include "sinew/core/error.hpp"
@@ -233,23 +237,13 @@ WrapMethod convertWrapMethod(const OsimPathWrap& wrap) {
     throw ModelError(wrap.where, "unknown wrap method '" + wrap.method + "' (expected hybrid, midpoint or axial)");
 }
 
-ForceLawSpec makeMuscleLaw(const OsimPathForce& muscle) {
-    ForceLawSpec law;
-    law.type = "thelen2003_muscle";
-    law.parameters.set("max_isometric_force", {muscle.maxIsometricForce});
-    law.parameters.set("optimal_fiber_length", {muscle.optimalFiberLength});
-    law.parameters.set("tendon_slack_length", {muscle.tendonSlackLength});
-    law.parameters.set("pennation_angle_at_optimal", {muscle.pennationAngleAtOptimal});
-    law.parameters.set("max_contraction_velocity", {muscle.maxContractionVelocity});
-    // Thelen2003Muscle's own curve parameters when the file gives them.
-    const std::array<std::pair<const char*, const char*>, 5> curve{{{"FmaxMuscleStrain", "fmax_muscle_strain"},
-                                                                    {"KshapeActive", "kshape_active"},
-                                                                    {"KshapePassive", "kshape_passive"},
-                                                                    {"Af", "af"},
-                                                                    {"Flen", "flen"}}};
-    for (const auto& [osimName, sinewName] : curve) {
+// The file's properties named in `names` (OpenSim's name, sinew's parameter) as law parameters.
+void copyMuscleProperties(const OsimPathForce& muscle, const std::vector<std::pair<std::string, std::string>>& names,
+                          ForceLawSpec& law) {
+    for (const auto& [osimName, sinewName] : names) {
         const auto it = muscle.properties.find(osimName);
-        if (it == muscle.properties.end()) continue;
+        // An empty element is an optional property left unset (OpenSim's empty list property).
+        if (it == muscle.properties.end() || it->second.empty()) continue;
         try {
             law.parameters.set(sinewName, {std::stod(it->second)});
         } catch (const std::exception&) {
@@ -257,10 +251,54 @@ ForceLawSpec makeMuscleLaw(const OsimPathForce& muscle) {
                                                "' is not a number");
         }
     }
+}
+
+// Millard2012EquilibriumMuscle keeps its own law and curves; every other muscle type becomes Thelen's
+// (with its curve parameters when the file gives them), which the conversion's warnings say.
+ForceLawSpec makeMuscleLaw(const OsimPathForce& muscle, std::vector<std::string>& warnings) {
+    ForceLawSpec law;
+    const bool millard = muscle.type == "Millard2012EquilibriumMuscle";
+    law.type = millard ? "millard2012_muscle" : "thelen2003_muscle";
+    law.parameters.set("max_isometric_force", {muscle.maxIsometricForce});
+    law.parameters.set("optimal_fiber_length", {muscle.optimalFiberLength});
+    law.parameters.set("tendon_slack_length", {muscle.tendonSlackLength});
+    law.parameters.set("pennation_angle_at_optimal", {muscle.pennationAngleAtOptimal});
+    law.parameters.set("max_contraction_velocity", {muscle.maxContractionVelocity});
+    if (millard) {
+        std::vector<std::pair<std::string, std::string>> names{{"fiber_damping", "fiber_damping"},
+                                                               {"maximum_pennation_angle", "maximum_pennation_angle"}};
+        const std::map<std::string, std::vector<std::string>> curves{
+            {"ActiveForceLengthCurve",
+             {"min_norm_active_fiber_length", "transition_norm_fiber_length", "max_norm_active_fiber_length",
+              "shallow_ascending_slope", "minimum_value"}},
+            {"ForceVelocityCurve",
+             {"concentric_slope_at_vmax", "concentric_slope_near_vmax", "isometric_slope", "eccentric_slope_at_vmax",
+              "eccentric_slope_near_vmax", "max_eccentric_velocity_force_multiplier", "concentric_curviness",
+              "eccentric_curviness"}},
+            {"FiberForceLengthCurve",
+             {"strain_at_zero_force", "strain_at_one_norm_force", "stiffness_at_low_force",
+              "stiffness_at_one_norm_force", "curviness"}}};
+        for (const auto& [curve, properties] : curves)
+            for (const std::string& property : properties) names.emplace_back(curve + "." + property, property);
+        copyMuscleProperties(muscle, names, law);
+        return law;
+    }
+    if (muscle.type != "Thelen2003Muscle")
+        warnings.push_back(describeAt(muscle.type, muscle.name, muscle.where) +
+                           ": sinew has no law of this type; it becomes thelen2003_muscle with the same max isometric "
+                           "force, fibre and tendon lengths, pennation and max contraction velocity");
+    copyMuscleProperties(muscle,
+                         {{"FmaxMuscleStrain", "fmax_muscle_strain"},
+                          {"KshapeActive", "kshape_active"},
+                          {"KshapePassive", "kshape_passive"},
+                          {"Af", "af"},
+                          {"Flen", "flen"}},
+                         law);
     return law;
 }
 
-void addMuscle(const OsimModel& osim, const OsimPathForce& muscle, ModelBuilder& builder) {
+void addMuscle(const OsimModel& osim, const OsimPathForce& muscle, ModelBuilder& builder,
+               std::vector<std::string>& warnings) {
     WireSpec wire;
     wire.name = muscle.name;
     wire.kind = WireKind::Muscle;
@@ -275,7 +313,7 @@ void addMuscle(const OsimModel& osim, const OsimPathForce& muscle, ModelBuilder&
         spec.where = wrap.where;
         wire.wraps.push_back(spec);
     }
-    wire.law = makeMuscleLaw(muscle);
+    wire.law = makeMuscleLaw(muscle, warnings);
     builder.addWire(std::move(wire));
 }
 
@@ -354,7 +392,7 @@ OsimConversion convertOsimModel(const OsimModel& osim) {
         else if (!force.limits.appliesForce)
             notImported.push_back(describeAt(force.type, force.name, force.where) + ": disabled in the model");
         else
-            addMuscle(osim, force, builder);
+            addMuscle(osim, force, builder, warnings);
     }
     for (const OsimCoordinateCoupler& coupler : osim.couplers) {
         if (coupler.enforced)

@@ -139,6 +139,7 @@ CoordinateTrajectory preprocessCoordinates(const Eigen::VectorXd& times, const E
     const Eigen::Index first = lastRowAtOrBefore(t, std::max(t(0), options.startTime));
     const Eigen::Index last = lastRowAtOrBefore(t, std::min(t(t.size() - 1), options.finalTime));
     const Eigen::Index frames = last - first + 1;
+    out.firstRow = first;
     out.times = t.segment(first, frames);
     out.q.resize(frames, values.cols());
     out.qdot.resize(frames, values.cols());

@@ -24,7 +24,7 @@ void checkActivationSettings(const Model& model, TensionProblemSettings& setting
         if (!wire.law->getMaxIsometricForce())
             throw Error("tensions: wire '" + wire.name + "' has force law '" + wire.lawSpec.type +
                         "'; muscle physiology in static optimization needs a muscle law (one with a max isometric "
-                        "force, such as thelen2003_muscle)");
+                        "force, such as thelen2003_muscle or millard2012_muscle)");
 }
 
 }  // namespace

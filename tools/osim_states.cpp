@@ -77,6 +77,7 @@ CoordinateTrajectory readOsimStates(const Model& model, const StorageTable& stat
         for (Eigen::Index f = 0; f < frames; ++f)
             trajectory.qddot(f, c) = speeds[static_cast<std::size_t>(c)].calcDerivative(trajectory.times[f], 1);
     trajectory.processedTimes = times;
+    trajectory.firstRow = first;
     trajectory.processedValues = q;
     return trajectory;
 }

@@ -99,6 +99,7 @@ OsimStaticOptimizationResult runOsimStaticOptimization(const Model& model, const
     motion.startTime = options.startTime;
     motion.finalTime = options.finalTime;
     motion.accelerationsFromSpeedSplines = true;
+    motion.stepInterval = options.stepInterval;
     motion.onFrame = options.onFrame;
     const TensionMotionResult run =
         options.motionIsStates

@@ -74,9 +74,6 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
     if (analysis.activationExponent < 1)
         throw ModelError(analysis.where, "activation_exponent " + std::to_string(analysis.activationExponent) +
                                              " is below 1: the sum of activations^exponent is then not convex");
-    if (analysis.stepInterval != 1) note("step_interval is ignored: every frame is reported");
-    note("results are written with 17 significant digits (output_precision " +
-         std::to_string(setup.outputPrecision) + " is not applied)");
     note(std::string("optimizer_convergence_criterion and optimizer_max_iterations do not apply: ") +
          (analysis.activationExponent == 2 ? "the active-set QP solves each frame to optimality"
                                            : "Ipopt solves each frame to 1e-12 (activation_exponent other than 2)"));
@@ -94,6 +91,7 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
     options.motionIsStates = states;
     options.useMusclePhysiology = analysis.useMusclePhysiology;
     options.activationExponent = analysis.activationExponent;
+    options.stepInterval = analysis.stepInterval;
     options.onFrame = onFrame;
     const int numWires = model.getNumWires();
     options.minActivation.resize(numWires);
@@ -118,9 +116,13 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
     std::filesystem::create_directories(directory);
     const std::string prefix = (directory / (setup.name + "_" + analysis.name + "_")).string();
     std::vector<std::string> written = {prefix + "force.sto", prefix + "activation.sto", prefix + "report.sto"};
+    // OpenSim prints its results with output_precision decimals (IO::SetPrecision, "%.Nlf"); sinew's own
+    // report keeps every digit.
+    StorageTable force = result.force, activation = result.activation;
+    force.decimals = activation.decimals = setup.outputPrecision;
     OutputFileSet outputs;
-    writeStorageFile(result.force, outputs, written[0]);
-    writeStorageFile(result.activation, outputs, written[1]);
+    writeStorageFile(force, outputs, written[0]);
+    writeStorageFile(activation, outputs, written[1]);
     writeStorageFile(result.report, outputs, written[2]);
     outputs.commit();
     return written;

@@ -157,11 +157,18 @@ const TensionFrame& solveFrame(TensionAnalysis& analysis, const MotionFrame& mot
     return *solved;
 }
 
+bool isRecorded(const CoordinateTrajectory& trajectory, int frame, int stepInterval) {
+    const Eigen::Index last = trajectory.times.size() - 1;
+    return frame == 0 || frame == last || (trajectory.firstRow + frame) % stepInterval == 0;
+}
+
 // Every frame of `trajectory` (q, qdot as u, qddot as udot), with the rows of `sampleTimes` listed in
 // `missingRows` flagged in between.
 TensionMotionResult analyseTrajectory(const Model& model, const CoordinateTrajectory& trajectory,
                                       const Eigen::VectorXd& sampleTimes, std::vector<int> missingRows,
                                       const ExternalLoads* loads, const TensionMotionOptions& options) {
+    if (options.stepInterval < 1)
+        throw Error("tensions: step interval " + std::to_string(options.stepInterval) + ", expected 1 or more");
     TensionMotionResult result;
     result.missingRows = std::move(missingRows);
     std::optional<MeasuredLoads> measured;
@@ -189,6 +196,7 @@ TensionMotionResult analyseTrajectory(const Model& model, const CoordinateTrajec
                 appendMissing(sampleTimes[missing[nextMissing]]);
             // After resampling (--lowpass over a gap) a frame may fall on a missing row's time: it stays flagged.
             if (nextMissing > 0 && sampleTimes[missing[nextMissing - 1]] == motion.time) return;
+            if (!isRecorded(trajectory, motion.index, options.stepInterval)) return;
             if (contacts) contacts->prepareFrame(motion.index);
             const auto start = std::chrono::steady_clock::now();
             const TensionFrame& frame = solveFrame(analysis, motion);

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <iomanip>
 #include <iostream>
 
@@ -72,6 +74,46 @@ TEST(StaticOptimizationTool, Arm26MatchesOpenSim) {
             EXPECT_GE(a, 0.01 - 1e-9);
             EXPECT_LE(a, 1 + 1e-9);
         }
+}
+
+// OpenSim's step_interval and output_precision: AnalyzeTool records at begin, at end and on the states
+// rows Analysis::proceed accepts (absolute row % N == 0, the padded table's rows: the low-pass pads
+// size / 2 rows before the first), and prints with output_precision decimals. arm26 with N = 7 and 5
+// decimals against the same run with every frame.
+TEST(StaticOptimizationTool, StepIntervalAndOutputPrecisionAreOpenSims) {
+    if (!std::filesystem::exists(kArm26))
+        GTEST_SKIP() << "../shared/data/opensim/arm26 is absent (it ships only with sinew's developer data)";
+    const AnalyzeSetup every = readAnalyzeSetup((kArm26 / "arm26_Setup_StaticOptimization.xml").string());
+    AnalyzeSetup sparse = every;
+    sparse.staticOptimization->stepInterval = 7;
+    sparse.outputPrecision = 5;
+    const std::filesystem::path directory = std::filesystem::path(::testing::TempDir());
+    const StorageTable all = readStorageFile(runStaticOptimizationTool(every, (directory / "so_every").string(), {})[1]);
+    const std::string sparsePath = runStaticOptimizationTool(sparse, (directory / "so_sparse").string(), {})[1];
+    const StorageTable some = readStorageFile(sparsePath);
+    const std::size_t frames = all.times.size(), pad = readStorageFile((kArm26 / "arm26_InverseKinematics.mot").string()).times.size() / 2;
+    std::vector<std::size_t> expected;
+    for (std::size_t r = 0; r < frames; ++r)
+        if (r == 0 || r + 1 == frames || (pad + r) % 7 == 0) expected.push_back(r);
+    ASSERT_EQ(some.times.size(), expected.size());
+    for (std::size_t k = 0; k < expected.size(); ++k) {
+        EXPECT_NEAR(some.times[k], all.times[expected[k]], 1e-5) << "row " << k;
+        for (std::size_t c = 0; c < all.columns.size(); ++c)
+            EXPECT_NEAR(some.rows[k][c], all.rows[expected[k]][c], 1e-5) << "row " << k << " " << all.columns[c];
+    }
+    // Five decimals, fixed, as "%.5lf" prints them (the time keeps every digit: frames are found by it).
+    std::ifstream file(sparsePath);
+    std::string line;
+    while (std::getline(file, line) && line != "endheader") {}
+    std::getline(file, line);  // column labels
+    std::getline(file, line);
+    std::istringstream numbers(line);
+    std::string number;
+    numbers >> number;
+    while (numbers >> number) {
+        ASSERT_NE(number.find('.'), std::string::npos) << number;
+        EXPECT_EQ(number.size() - number.find('.') - 1, 5u) << number;
+    }
 }
 
 }  // namespace

@@ -37,6 +37,7 @@ struct CoordinateTrajectory {
     // and the splines themselves, to evaluate at other times.
     Eigen::VectorXd processedTimes;
     Eigen::MatrixXd processedValues;
+    Eigen::Index firstRow = 0;   // times(0)'s row in processedTimes (OpenSim's states-storage index)
     std::vector<SmoothingSpline> splines;
     double samplePeriod = 0;     // s; the filter's step (0 without filtering)
     double usedCutoffHz = -1;    // the cutoff applied (0.49 of the sampling rate if the request exceeded Nyquist)

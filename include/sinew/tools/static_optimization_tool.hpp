@@ -39,6 +39,7 @@ struct OsimStaticOptimizationOptions {
     Eigen::VectorXd minActivation, maxActivation;
     bool useMusclePhysiology = true;
     double activationExponent = 2;  // OpenSim's activation_exponent (>= 1)
+    int stepInterval = 1;  // OpenSim's step_interval (TensionMotionOptions::stepInterval)
     std::function<void(int frame, int frames)> onFrame;
 };
 
@@ -52,8 +53,8 @@ struct OsimStaticOptimizationResult {
     int flaggedFrames = 0;  // frames the solver did not solve to optimality
 };
 
-// The wires must all be thelen2003_muscle when useMusclePhysiology; a reserve's coordinate or bodies must be
-// the model's (else sinew::Error at the actuator's file:line).
+// The wires must all have a muscle law (thelen2003_muscle, millard2012_muscle) when useMusclePhysiology; a
+// reserve's coordinate or bodies must be the model's (else sinew::Error at the actuator's file:line).
 OsimStaticOptimizationResult runOsimStaticOptimization(const Model& model, const StorageTable& motionTable,
                                                        const ExternalLoads* loads,
                                                        const OsimStaticOptimizationOptions& options);

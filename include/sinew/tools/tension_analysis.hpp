@@ -28,7 +28,7 @@ struct TensionAnalysisOptions {
     std::string method = "qp";
     WireProblemOptions problem;  // LP band, LP cost, QP regulariser
     // (numWires) N: the LP / QP upper bound of each tension. Empty: each wire's max isometric force, which
-    // every wire's law then needs (thelen2003_muscle); a wire with another law must be given one here.
+    // every wire's law then needs (a muscle law); a wire with another law must be given one here.
     Eigen::VectorXd maxTension;
     // Static optimization: (numWires) activation bounds (empty: [0, 1]).
     Eigen::VectorXd minActivation, maxActivation;

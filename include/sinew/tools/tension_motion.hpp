@@ -29,6 +29,10 @@ struct TensionMotionOptions {
     // true: the first derivative of quintic splines through the speeds at every processed row (OpenSim's
     // AnalyzeTool states, which StaticOptimization differentiates again).
     bool accelerationsFromSpeedSplines = false;
+    // OpenSim's step_interval N: only the first and last frames and those whose row in the processed table
+    // (CoordinateTrajectory::firstRow + frame) is a multiple of N are solved and reported, as AnalyzeTool
+    // records an analysis at begin, at end and on the steps Analysis::proceed accepts.
+    int stepInterval = 1;
     // Without external loads, the feet the model names (Model::getContacts) get contact forces as unknowns on
     // the frames they touch the ground (docs/tensions-from-motion.md, "Contact without force plates").
     bool contact = true;
