@@ -84,11 +84,6 @@ SmoothSegmentedCurve makePassiveForceLengthCurve(const MillardMuscleParameters& 
     return SmoothSegmentedCurve("passive force-length", knots, {p.passiveCurviness, p.passiveCurviness});
 }
 
-void requirePositive(const char* name, double value) {
-    require(std::isfinite(value) && value > 0,
-            std::string("parameter '") + name + "' must be a finite number > 0, got " + std::to_string(value));
-}
-
 }  // namespace
 
 MillardMuscle::MillardMuscle(const MillardMuscleParameters& parameters)
@@ -97,16 +92,9 @@ MillardMuscle::MillardMuscle(const MillardMuscleParameters& parameters)
       forceVelocity_(makeForceVelocityCurve(parameters)),
       passiveForceLength_(makePassiveForceLengthCurve(parameters)) {
     const MillardMuscleParameters& p = parameters_;
-    requirePositive("max_isometric_force", p.maxIsometricForce);
-    requirePositive("optimal_fiber_length", p.optimalFiberLength);
-    requirePositive("max_contraction_velocity", p.maxContractionVelocity);
-    require(std::isfinite(p.tendonSlackLength) && p.tendonSlackLength >= 0,
-            "parameter 'tendon_slack_length' must be a finite number >= 0");
-    require(p.pennationAngleAtOptimal >= 0 && p.pennationAngleAtOptimal < M_PI / 2,
-            "parameter 'pennation_angle_at_optimal' must lie in [0, pi/2) rad");
+    checkMuscleParameters("millard2012_muscle", p);
     require(p.maximumPennationAngle >= 0 && p.maximumPennationAngle <= M_PI / 2,
             "parameter 'maximum_pennation_angle' must lie in [0, pi/2] rad");
-    require(p.activation >= 0 && p.activation <= 1, "parameter 'activation' must lie in [0, 1]");
     require(std::isfinite(p.fiberDamping) && p.fiberDamping >= 0, "parameter 'fiber_damping' must be >= 0");
     height_ = p.optimalFiberLength * std::sin(p.pennationAngleAtOptimal);
     // MuscleFixedWidthPennationModel's shortest fibre (at the maximum pennation), then Millard's bound.
@@ -119,13 +107,8 @@ MillardMuscle::MillardMuscle(const MillardMuscleParameters& parameters)
 
 std::shared_ptr<const ForceLaw> MillardMuscle::create(const ForceLawParameters& parameters) {
     MillardMuscleParameters p;
-    p.maxIsometricForce = parameters.getScalar("max_isometric_force");
-    p.optimalFiberLength = parameters.getScalar("optimal_fiber_length");
-    p.tendonSlackLength = parameters.getScalar("tendon_slack_length");
+    readMuscleParameters(parameters, p);
     const auto read = [&](const char* name, double& value) { value = parameters.getScalarOr(name, value); };
-    read("pennation_angle_at_optimal", p.pennationAngleAtOptimal);
-    read("max_contraction_velocity", p.maxContractionVelocity);
-    read("activation", p.activation);
     read("fiber_damping", p.fiberDamping);
     read("maximum_pennation_angle", p.maximumPennationAngle);
     read("min_norm_active_fiber_length", p.minNormActiveFiberLength);

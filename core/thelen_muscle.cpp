@@ -35,30 +35,17 @@ double calcPassiveForce(const ThelenMuscleParameters& p, double normalizedLength
 }  // namespace
 
 ThelenMuscle::ThelenMuscle(const ThelenMuscleParameters& parameters) : parameters_(parameters) {
-    requirePositive("max_isometric_force", parameters.maxIsometricForce);
-    requirePositive("optimal_fiber_length", parameters.optimalFiberLength);
-    requirePositive("max_contraction_velocity", parameters.maxContractionVelocity);
+    checkMuscleParameters("thelen2003_muscle", parameters);
     requirePositive("fmax_muscle_strain", parameters.fmaxMuscleStrain);
     requirePositive("kshape_active", parameters.kShapeActive);
     requirePositive("kshape_passive", parameters.kShapePassive);
     requirePositive("af", parameters.af);
-    if (!std::isfinite(parameters.tendonSlackLength) || parameters.tendonSlackLength < 0)
-        throw Error("parameter 'tendon_slack_length' must be a finite number >= 0");
-    if (!(parameters.pennationAngleAtOptimal >= 0 && parameters.pennationAngleAtOptimal < M_PI / 2))
-        throw Error("parameter 'pennation_angle_at_optimal' must lie in [0, pi/2) rad");
-    if (!(parameters.activation >= 0 && parameters.activation <= 1))
-        throw Error("parameter 'activation' must lie in [0, 1]");
     if (!(parameters.flen > 1)) throw Error("parameter 'flen' must be > 1");
 }
 
 std::shared_ptr<const ForceLaw> ThelenMuscle::create(const ForceLawParameters& parameters) {
     ThelenMuscleParameters p;
-    p.maxIsometricForce = parameters.getScalar("max_isometric_force");
-    p.optimalFiberLength = parameters.getScalar("optimal_fiber_length");
-    p.tendonSlackLength = parameters.getScalar("tendon_slack_length");
-    p.pennationAngleAtOptimal = parameters.getScalarOr("pennation_angle_at_optimal", p.pennationAngleAtOptimal);
-    p.maxContractionVelocity = parameters.getScalarOr("max_contraction_velocity", p.maxContractionVelocity);
-    p.activation = parameters.getScalarOr("activation", p.activation);
+    readMuscleParameters(parameters, p);
     p.fmaxMuscleStrain = parameters.getScalarOr("fmax_muscle_strain", p.fmaxMuscleStrain);
     p.kShapeActive = parameters.getScalarOr("kshape_active", p.kShapeActive);
     p.kShapePassive = parameters.getScalarOr("kshape_passive", p.kShapePassive);

@@ -7,9 +7,6 @@
 // τ inverse dynamics with the measured loads.
 #include <gtest/gtest.h>
 
-#include <IpIpoptApplication.hpp>
-#include <IpTNLP.hpp>
-
 #include <filesystem>
 #include <iostream>
 
@@ -24,99 +21,13 @@
 #include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/motion_frames.hpp"
 #include "sinew/tools/tension_motion.hpp"
+#include "support/ipopt_reference.hpp"
 
 namespace sinew {
 namespace {
 
 const std::filesystem::path kShared = std::filesystem::path(SINEW_SHARED_DIR) / "data";
 constexpr double kMinActivation = 0.01, kReserveForce = 20;
-
-// min Σ x² over x = [a; c], columns A (rows = DOFs), A x = tau, bounds as given.
-class ActivationNlp : public Ipopt::TNLP {
-public:
-    ActivationNlp(Eigen::MatrixXd A, Eigen::VectorXd tau, Eigen::VectorXd lower, Eigen::VectorXd upper)
-        : A_(std::move(A)), tau_(std::move(tau)), lower_(std::move(lower)), upper_(std::move(upper)) {}
-    Eigen::VectorXd x;
-    bool solved = false;
-
-    bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnzJacobian, Ipopt::Index& nnzHessian,
-                      IndexStyleEnum& style) override {
-        n = static_cast<Ipopt::Index>(A_.cols());
-        m = static_cast<Ipopt::Index>(A_.rows());
-        nnzJacobian = n * m;
-        nnzHessian = n;
-        style = C_STYLE;
-        return true;
-    }
-    bool get_bounds_info(Ipopt::Index n, Ipopt::Number* xLower, Ipopt::Number* xUpper, Ipopt::Index m,
-                         Ipopt::Number* gLower, Ipopt::Number* gUpper) override {
-        for (Ipopt::Index j = 0; j < n; ++j) xLower[j] = lower_[j], xUpper[j] = upper_[j];
-        for (Ipopt::Index i = 0; i < m; ++i) gLower[i] = gUpper[i] = tau_[i];
-        return true;
-    }
-    bool get_starting_point(Ipopt::Index n, bool, Ipopt::Number* x0, bool, Ipopt::Number*, Ipopt::Number*,
-                            Ipopt::Index, bool, Ipopt::Number*) override {
-        for (Ipopt::Index j = 0; j < n; ++j) x0[j] = std::max(lower_[j], std::min(upper_[j], 0.1));
-        return true;
-    }
-    bool eval_f(Ipopt::Index n, const Ipopt::Number* x0, bool, Ipopt::Number& f) override {
-        f = Eigen::Map<const Eigen::VectorXd>(x0, n).squaredNorm();
-        return true;
-    }
-    bool eval_grad_f(Ipopt::Index n, const Ipopt::Number* x0, bool, Ipopt::Number* g) override {
-        for (Ipopt::Index j = 0; j < n; ++j) g[j] = 2 * x0[j];
-        return true;
-    }
-    bool eval_g(Ipopt::Index n, const Ipopt::Number* x0, bool, Ipopt::Index m, Ipopt::Number* g) override {
-        Eigen::Map<Eigen::VectorXd>(g, m) = A_ * Eigen::Map<const Eigen::VectorXd>(x0, n);
-        return true;
-    }
-    bool eval_jac_g(Ipopt::Index n, const Ipopt::Number*, bool, Ipopt::Index m, Ipopt::Index, Ipopt::Index* row,
-                    Ipopt::Index* column, Ipopt::Number* values) override {
-        Ipopt::Index k = 0;
-        for (Ipopt::Index i = 0; i < m; ++i)
-            for (Ipopt::Index j = 0; j < n; ++j, ++k) {
-                if (values) values[k] = A_(i, j);
-                else row[k] = i, column[k] = j;
-            }
-        return true;
-    }
-    bool eval_h(Ipopt::Index n, const Ipopt::Number*, bool, Ipopt::Number objectiveFactor, Ipopt::Index,
-                const Ipopt::Number*, bool, Ipopt::Index, Ipopt::Index* row, Ipopt::Index* column,
-                Ipopt::Number* values) override {
-        for (Ipopt::Index j = 0; j < n; ++j) {
-            if (values) values[j] = 2 * objectiveFactor;
-            else row[j] = column[j] = j;
-        }
-        return true;
-    }
-    void finalize_solution(Ipopt::SolverReturn status, Ipopt::Index n, const Ipopt::Number* x0, const Ipopt::Number*,
-                           const Ipopt::Number*, Ipopt::Index, const Ipopt::Number*, const Ipopt::Number*, Ipopt::Number,
-                           const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
-        solved = status == Ipopt::SUCCESS;
-        x = Eigen::Map<const Eigen::VectorXd>(x0, n);
-    }
-
-private:
-    Eigen::MatrixXd A_;
-    Eigen::VectorXd tau_, lower_, upper_;
-};
-
-Eigen::VectorXd solveWithIpopt(const Eigen::MatrixXd& A, const Eigen::VectorXd& tau, const Eigen::VectorXd& lower,
-                               const Eigen::VectorXd& upper) {
-    Ipopt::SmartPtr<ActivationNlp> nlp = new ActivationNlp(A, tau, lower, upper);
-    Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
-    app->Options()->SetIntegerValue("print_level", 0);
-    app->Options()->SetStringValue("sb", "yes");
-    app->Options()->SetNumericValue("tol", 1e-12);
-    app->Options()->SetStringValue("hessian_constant", "yes");
-    app->Options()->SetStringValue("jac_c_constant", "yes");
-    app->Options()->SetStringValue("jac_d_constant", "yes");
-    EXPECT_EQ(app->Initialize(), Ipopt::Solve_Succeeded);
-    app->OptimizeTNLP(nlp);
-    EXPECT_TRUE(nlp->solved);
-    return nlp->x;
-}
 
 void checkAgainstIpopt(const char* file, const std::string& lawType) {
     const std::filesystem::path modelPath = kShared / "opensim-models" / "Models" / "Gait2392_Simbody" / file;
@@ -151,9 +62,16 @@ void checkAgainstIpopt(const char* file, const std::string& lawType) {
     Data data(model);
     Eigen::MatrixXd J(numWires, nu);
     Eigen::VectorXd tau(nu);
-    Eigen::VectorXd lower(numWires + nu), upper(numWires + nu);
-    lower << Eigen::VectorXd::Constant(numWires, kMinActivation), Eigen::VectorXd::Constant(nu, -1e19);
-    upper << Eigen::VectorXd::Ones(numWires), Eigen::VectorXd::Constant(nu, 1e19);
+    // Σ x² as the QP's ½ Σ 2 x², every row an equality; reserves unbounded.
+    DistributionProblem problem;
+    problem.lower.resize(numWires + nu);
+    problem.upper.resize(numWires + nu);
+    problem.lower << Eigen::VectorXd::Constant(numWires, kMinActivation), Eigen::VectorXd::Constant(nu, -INFINITY);
+    problem.upper << Eigen::VectorXd::Ones(numWires), Eigen::VectorXd::Constant(nu, INFINITY);
+    problem.cost.setZero(numWires + nu);
+    problem.weight.setConstant(numWires + nu, 2);
+    problem.tolerance.setZero(nu);
+    problem.isEquality.assign(static_cast<std::size_t>(nu), true);
     double worst = 0, largestReserve = 0;
     forEachMotionFrame(model, trajectory, &measured, [&](const MotionFrame& frame) {
         calcInverseDynamics(model, data, frame.q, frame.u, frame.udot, frame.appliedLinkForces, tau);
@@ -169,7 +87,12 @@ void checkAgainstIpopt(const char* file, const std::string& lawType) {
             A.col(w) = -J.row(w).transpose() * perActivation;
         }
         A.rightCols(nu) = kReserveForce * Eigen::MatrixXd::Identity(nu, nu);
-        const Eigen::VectorXd x = solveWithIpopt(A, tau, lower, upper);
+        problem.A = A.sparseView(0, 0);
+        problem.A.makeCompressed();
+        problem.target = tau;
+        const test::IpoptReference reference = test::solveWithIpopt(problem, test::DistributionNlp::Kind::Qp);
+        ASSERT_TRUE(reference.solved) << file << " frame " << frame.index;
+        const Eigen::VectorXd& x = reference.x;
         const std::vector<double>& ours = run.activations.rows[static_cast<std::size_t>(frame.index)];
         for (int w = 0; w < numWires; ++w) {
             const double difference = std::fabs(ours[static_cast<std::size_t>(w)] - x[w]);

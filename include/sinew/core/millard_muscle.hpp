@@ -7,17 +7,12 @@
 #include <memory>
 
 #include "sinew/core/force_law.hpp"
+#include "sinew/core/hill_muscle.hpp"
 #include "sinew/core/smooth_segmented_curve.hpp"
 
 namespace sinew {
 
-struct MillardMuscleParameters {
-    double maxIsometricForce = 1000;     // N
-    double optimalFiberLength = 0.1;     // m
-    double tendonSlackLength = 0.2;      // m
-    double pennationAngleAtOptimal = 0;  // rad
-    double maxContractionVelocity = 10;  // optimal fibre lengths per second
-    double activation = 0;               // 0..1, held constant (0: passive)
+struct MillardMuscleParameters : MuscleParameters {
     double fiberDamping = 0.1;           // max isometric forces per normalized fibre velocity
     double maximumPennationAngle = 1.4706289056333368;  // rad, acos(0.1)
     // ActiveForceLengthCurve
@@ -44,16 +39,10 @@ struct MillardMuscleParameters {
     double passiveCurviness = 0.75;
 };
 
-// The fibre on a rigid tendon at one muscle-tendon length and lengthening speed.
-struct MillardFiberState {
-    double length = 0;              // m, clamped at the minimum fibre length
-    double normalizedLength = 0;    // / optimal fibre length
-    double normalizedVelocity = 0;  // / (optimal fibre length × max contraction velocity)
-    double cosPennation = 1;
-    bool atMinimumLength = false;   // the path is too short for the fibre: OpenSim clamps it
-    double activeForceLength = 0;   // multipliers of max isometric force
-    double forceVelocity = 1;
-    double passiveForce = 0;
+// The fibre on a rigid tendon, clamped at the minimum fibre length.
+struct MillardFiberState : MuscleFiberState {
+    double length = 0;             // m
+    bool atMinimumLength = false;  // the path is too short for the fibre: OpenSim clamps it
 };
 
 class MillardMuscle final : public ForceLaw {

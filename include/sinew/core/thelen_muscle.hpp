@@ -6,16 +6,11 @@
 #include <memory>
 
 #include "sinew/core/force_law.hpp"
+#include "sinew/core/hill_muscle.hpp"
 
 namespace sinew {
 
-struct ThelenMuscleParameters {
-    double maxIsometricForce = 1000;    // N
-    double optimalFiberLength = 0.1;    // m
-    double tendonSlackLength = 0.2;     // m
-    double pennationAngleAtOptimal = 0; // rad
-    double maxContractionVelocity = 10; // optimal fibre lengths per second
-    double activation = 0;              // 0..1, held constant (0: passive)
+struct ThelenMuscleParameters : MuscleParameters {
     double fmaxMuscleStrain = 0.6;      // passive strain at one max isometric force (OpenSim's FmaxMuscleStrain)
     double kShapeActive = 0.45;         // width of the Gaussian active force-length curve
     double kShapePassive = 4;           // exponential shape of the passive curve
@@ -24,14 +19,7 @@ struct ThelenMuscleParameters {
 };
 
 // The fibre on a rigid tendon: pennated with constant thickness l_opt sin(alpha_opt).
-struct ThelenFiberState {
-    double normalizedLength = 0;    // fibre length / optimal fibre length
-    double normalizedVelocity = 0;  // fibre lengthening speed / (max contraction velocity * optimal length)
-    double cosPennation = 1;
-    double activeForceLength = 0;   // multipliers of max isometric force
-    double forceVelocity = 1;
-    double passiveForce = 0;
-};
+using ThelenFiberState = MuscleFiberState;
 
 class ThelenMuscle final : public ForceLaw {
 public:
