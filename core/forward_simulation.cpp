@@ -10,6 +10,7 @@
 
 #include "sinew/core/assembly_schedule.hpp"
 #include "sinew/core/coordinate_coupler.hpp"
+#include "sinew/core/force_elements.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/forward_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
@@ -62,13 +63,14 @@ public:
     const VirtualLinkEquilibriumStatus& getVirtualLinkStatus() const { return equilibrium_.status; }
     const Eigen::VectorXd& getTensions() const { return tensions_; }
 
-    // ydot = [qdot; udot] at (t, y): the forward dynamics with zero generalized forces, gravity and the wire
+    // ydot = [qdot; udot] at (t, y): the forward dynamics with gravity, the force elements and the wire
     // tensions; leaves the kinematics, wire paths and tensions of (t, y) in data_ and tensions_.
     void calcStateDerivative(double t, const Eigen::VectorXd& y, Eigen::VectorXd& ydot) {
         calcKinematicsAndTensions(t, y);
         calcWireLinkForces(model_, data_, tensions_);
         tau_.setZero();
         addWireCoordinateForces(model_, data_, tensions_, tau_);  // moving points and ellipsoid-wrapped wires
+        addForceElementForces(model_, data_, data_.F_G, tau_);
         calcForwardDynamics(model_, schedule_, data_, tau_, data_.F_G, fd_);
         for (int i = 0; i < model_.getNumLinks(); ++i) {
             const Joint& joint = model_.getJoint(i);
@@ -374,7 +376,7 @@ int findHangLink(const Model& model, const std::string& hangBy) {
 // kinematics and wire paths in `data`.
 void calcMechanicalEnergy(const Model& model, const Data& data, double& kinetic, double& potential) {
     kinetic = 0;
-    potential = calcWirePotentialEnergy(model, data);
+    potential = calcWirePotentialEnergy(model, data) + calcForceElementPotentialEnergy(model, data);
     for (int i = 0; i < model.getNumLinks(); ++i) {
         const Link& link = model.getLink(i);
         const std::size_t b = static_cast<std::size_t>(i);

@@ -371,6 +371,7 @@ Model ModelBuilder::build() const {
     c.buildCouplers();
     c.buildWires();
     buildContacts(c.model);
+    buildForceElements(c.model);
     return std::move(c.model);
 }
 
@@ -803,6 +804,122 @@ void ModelBuilder::buildContacts(Model& model) const {
         if (!(cs.friction >= 0) || !std::isfinite(cs.friction))
             throw ModelError(cs.where, label + ": friction " + std::to_string(cs.friction) + " must be finite and >= 0");
         model.contacts_.push_back({cs.name, link, cs.sole_B, cs.friction});
+    }
+}
+
+namespace {
+
+// A frame spec on the model's links, checked.
+LinkFrame resolveFrame(const Model& model, const LinkFrameSpec& spec, const std::string& where, const std::string& label) {
+    const int link = model.findLinkIndex(spec.link);
+    if (link == Model::kNotFound) throw ModelError(where, label + ": unknown link '" + spec.link + "'");
+    if (link != kGround && model.getLink(link).isVirtual)
+        throw ModelError(where, label + ": link '" + spec.link + "' is a virtual link, which carries wires only");
+    requireFinite(where, label + ": translation", spec.translation);
+    requireFinite(where, label + ": rotation", spec.xyzBodyRotation);
+    return {link, spec.translation, calcRotationFromBodyFixedXYZ(spec.xyzBodyRotation), spec.xyzBodyRotation};
+}
+
+void requireNonNegative(const std::string& where, const std::string& label, const char* what, double value) {
+    if (!(value >= 0) || !std::isfinite(value))
+        throw ModelError(where, label + ": " + what + " " + std::to_string(value) + " must be finite and >= 0");
+}
+
+void requireNonNegative(const std::string& where, const std::string& label, const char* what,
+                        const Eigen::Vector3d& value) {
+    for (int i = 0; i < 3; ++i) requireNonNegative(where, label, what, value[i]);
+}
+
+}  // namespace
+
+void ModelBuilder::buildForceElements(Model& model) const {
+    ForceElements& elements = model.forceElements_;
+    std::map<std::string, std::string> names;
+    for (const CoordinateLimitForceSpec& spec : coordinateLimits_) {
+        claimName(names, "force element", spec.name, spec.where);
+        const std::string label = "CoordinateLimitForce '" + spec.name + "'";
+        const int q = model.findCoordinateIndex(spec.coordinate);
+        if (q == Model::kNotFound) throw ModelError(spec.where, label + ": unknown coordinate '" + spec.coordinate + "'");
+        const Joint& joint = model.getJoint(model.getCoordinates()[static_cast<std::size_t>(q)].joint);
+        if (joint.type != JointType::Pin && joint.type != JointType::Custom)
+            throw ModelError(spec.where, label + ": coordinate '" + spec.coordinate +
+                                             "' is part of a quaternion; a limit needs a pin or custom joint's coordinate");
+        for (const auto& [what, value] : {std::pair<const char*, double>{"upper stiffness", spec.upperStiffness},
+                                          {"lower stiffness", spec.lowerStiffness},
+                                          {"damping", spec.damping}})
+            requireNonNegative(spec.where, label, what, value);
+        if (!(spec.transition > 0) || !std::isfinite(spec.transition))
+            throw ModelError(spec.where, label + ": transition " + std::to_string(spec.transition) + " must be > 0");
+        if (!std::isfinite(spec.upperLimit) || !std::isfinite(spec.lowerLimit) || !(spec.lowerLimit <= spec.upperLimit))
+            throw ModelError(spec.where, label + ": limits [" + std::to_string(spec.lowerLimit) + ", " +
+                                             std::to_string(spec.upperLimit) + "] must be finite with lower <= upper");
+        const int u = joint.uStart + (q - joint.qStart);
+        elements.coordinateLimits.push_back({spec.name, q, u, spec.upperStiffness, spec.upperLimit, spec.lowerStiffness,
+                                             spec.lowerLimit, spec.damping, spec.transition});
+    }
+    for (const PointToPointSpringSpec& spec : springs_) {
+        claimName(names, "force element", spec.name, spec.where);
+        const std::string label = "PointToPointSpring '" + spec.name + "'";
+        const LinkFrame a = resolveFrame(model, {spec.linkA, spec.pointA, Eigen::Vector3d::Zero()}, spec.where, label);
+        const LinkFrame b = resolveFrame(model, {spec.linkB, spec.pointB, Eigen::Vector3d::Zero()}, spec.where, label);
+        if (a.link == b.link) throw ModelError(spec.where, label + ": both points are on '" + spec.linkA + "'");
+        requireNonNegative(spec.where, label, "stiffness", spec.stiffness);
+        requireNonNegative(spec.where, label, "rest length", spec.restLength);
+        elements.springs.push_back({spec.name, a.link, b.link, a.p_BF, b.p_BF, spec.stiffness, spec.restLength});
+    }
+    for (const BushingForceSpec& spec : bushings_) {
+        claimName(names, "force element", spec.name, spec.where);
+        const std::string label = "BushingForce '" + spec.name + "'";
+        BushingForce bushing{spec.name,
+                             resolveFrame(model, spec.frameA, spec.where, label),
+                             resolveFrame(model, spec.frameB, spec.where, label),
+                             spec.rotationalStiffness,
+                             spec.translationalStiffness,
+                             spec.rotationalDamping,
+                             spec.translationalDamping};
+        if (bushing.frameA.link == bushing.frameB.link)
+            throw ModelError(spec.where, label + ": both frames are on '" + spec.frameA.link + "'");
+        requireNonNegative(spec.where, label, "rotational stiffness", spec.rotationalStiffness);
+        requireNonNegative(spec.where, label, "translational stiffness", spec.translationalStiffness);
+        requireNonNegative(spec.where, label, "rotational damping", spec.rotationalDamping);
+        requireNonNegative(spec.where, label, "translational damping", spec.translationalDamping);
+        elements.bushings.push_back(std::move(bushing));
+    }
+    std::map<std::string, std::string> geometryNames;
+    for (const ContactGeometrySpec& spec : contactGeometry_) {
+        claimName(geometryNames, "contact geometry", spec.name, spec.where);
+        const std::string label = "contact geometry '" + spec.name + "'";
+        const bool sphere = spec.shape == ContactGeometry::Shape::Sphere;
+        if (sphere && (!(spec.radius > 0) || !std::isfinite(spec.radius)))
+            throw ModelError(spec.where, label + ": radius " + std::to_string(spec.radius) + " must be finite and > 0");
+        elements.contactGeometry.push_back({spec.name, spec.shape, resolveFrame(model, spec.frame, spec.where, label),
+                                            sphere ? spec.radius : 0.0});
+    }
+    for (const HuntCrossleyForceSpec& spec : huntCrossley_) {
+        claimName(names, "force element", spec.name, spec.where);
+        const std::string label = "HuntCrossleyForce '" + spec.name + "'";
+        if (!(spec.transitionVelocity > 0) || !std::isfinite(spec.transitionVelocity))
+            throw ModelError(spec.where, label + ": transition velocity " + std::to_string(spec.transitionVelocity) +
+                                             " must be finite and > 0");
+        HuntCrossleyForce force{spec.name, {}, spec.transitionVelocity};
+        for (const HuntCrossleySurfaceSpec& surface : spec.surfaces) {
+            const auto it = std::find_if(elements.contactGeometry.begin(), elements.contactGeometry.end(),
+                                         [&](const ContactGeometry& g) { return g.name == surface.geometry; });
+            if (it == elements.contactGeometry.end())
+                throw ModelError(spec.where, label + ": unknown contact geometry '" + surface.geometry + "'");
+            if (!(surface.stiffness > 0) || !std::isfinite(surface.stiffness))
+                throw ModelError(spec.where, label + ": '" + surface.geometry + "' has stiffness " +
+                                                 std::to_string(surface.stiffness) + ", expected > 0");
+            for (const auto& [what, value] : {std::pair<const char*, double>{"dissipation", surface.dissipation},
+                                              {"static friction", surface.staticFriction},
+                                              {"dynamic friction", surface.dynamicFriction},
+                                              {"viscous friction", surface.viscousFriction}})
+                requireNonNegative(spec.where, label + ", '" + surface.geometry + "'", what, value);
+            force.surfaces.push_back({static_cast<int>(it - elements.contactGeometry.begin()), surface.stiffness,
+                                      surface.dissipation, surface.staticFriction, surface.dynamicFriction,
+                                      surface.viscousFriction});
+        }
+        elements.huntCrossley.push_back(std::move(force));
     }
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -334,6 +335,84 @@ CoordinateCouplerSpec convertCoupler(const OsimCoordinateCoupler& coupler) {
     return spec;
 }
 
+LinkFrameSpec convertFrame(const OsimModel& osim, const OsimFrameRef& frame) {
+    return {linkName(osim, frame.body), frame.p_BF, calcBodyFixedXYZ(frame.R_BF)};
+}
+
+// OpenSim's CoordinateLimitForce takes degrees (and stiffness per degree) on a rotational coordinate.
+CoordinateLimitForceSpec convertCoordinateLimit(const OsimModel& osim, const OsimCoordinateLimitForce& force) {
+    const OsimCoordinate* coordinate = findCoordinate(osim, force.coordinate);
+    const double w = coordinate && coordinate->motionType == OsimMotionType::Rotational ? M_PI / 180 : 1.0;
+    return {force.name,      force.coordinate, force.upperStiffness / w, w * force.upperLimit, force.lowerStiffness / w,
+            w * force.lowerLimit, force.damping / w, w * force.transition, force.where};
+}
+
+// Every pair OpenSim's contact set would test that sinew computes: a sphere and a half-space on different
+// bodies. Other pairs (two spheres) are listed as not imported.
+void addHuntCrossleyForce(const OsimModel& osim, const OsimHuntCrossleyForce& force, ModelBuilder& builder,
+                          std::set<std::string>& usedGeometry, std::vector<std::string>& notImported) {
+    HuntCrossleyForceSpec spec{force.name, {}, force.transitionVelocity, force.where};
+    int spheres = 0, halfSpaces = 0;
+    for (const OsimHuntCrossleyForce::Parameters& p : force.parameters)
+        for (const std::string& name : p.geometry) {
+            const auto geometry = std::find_if(osim.contactGeometry.begin(), osim.contactGeometry.end(),
+                                               [&](const OsimContactGeometry& g) { return g.name == name; });
+            if (geometry == osim.contactGeometry.end())
+                throw ModelError(force.where, "HuntCrossleyForce '" + force.name + "': no contact geometry '" + name + "'");
+            (geometry->type == "ContactSphere" ? spheres : halfSpaces) += 1;
+            usedGeometry.insert(name);
+            spec.surfaces.push_back({name, p.stiffness, p.dissipation, p.staticFriction, p.dynamicFriction, p.viscousFriction});
+        }
+    if (spheres > 1)
+        notImported.push_back(describeAt("HuntCrossleyForce", force.name, force.where) +
+                              ": its sphere-sphere pairs (sinew computes spheres against half-spaces only)");
+    builder.addHuntCrossleyForce(std::move(spec));
+}
+
+void addForceElements(const OsimModel& osim, ModelBuilder& builder, std::vector<std::string>& notImported) {
+    const auto disabled = [&](const char* type, const std::string& name, const std::string& where) {
+        notImported.push_back(describeAt(type, name, where) + ": disabled in the model");
+    };
+    for (const OsimCoordinateLimitForce& force : osim.coordinateLimits) {
+        if (force.appliesForce) builder.addCoordinateLimitForce(convertCoordinateLimit(osim, force));
+        else disabled("CoordinateLimitForce", force.name, force.where);
+    }
+    for (const OsimPointToPointSpring& spring : osim.springs) {
+        if (!spring.appliesForce) {
+            disabled("PointToPointSpring", spring.name, spring.where);
+            continue;
+        }
+        builder.addPointToPointSpring({spring.name, linkName(osim, spring.point1.body), linkName(osim, spring.point2.body),
+                                       spring.point1.p_BF, spring.point2.p_BF, spring.stiffness, spring.restLength,
+                                       spring.where});
+    }
+    for (const OsimBushingForce& bushing : osim.bushings) {
+        if (!bushing.appliesForce) {
+            disabled("BushingForce", bushing.name, bushing.where);
+            continue;
+        }
+        builder.addBushingForce({bushing.name, convertFrame(osim, bushing.frame1), convertFrame(osim, bushing.frame2),
+                                 bushing.rotationalStiffness, bushing.translationalStiffness, bushing.rotationalDamping,
+                                 bushing.translationalDamping, bushing.where});
+    }
+    std::set<std::string> usedGeometry;
+    for (const OsimHuntCrossleyForce& force : osim.huntCrossley) {
+        if (force.appliesForce) addHuntCrossleyForce(osim, force, builder, usedGeometry, notImported);
+        else disabled("HuntCrossleyForce", force.name, force.where);
+    }
+    // Geometry no force touches with does nothing; it is kept only where a force uses it.
+    for (const OsimContactGeometry& geometry : osim.contactGeometry) {
+        if (!usedGeometry.count(geometry.name)) {
+            notImported.push_back(describeAt(geometry.type, geometry.name, geometry.where) + ": no contact force uses it");
+            continue;
+        }
+        const bool sphere = geometry.type == "ContactSphere";
+        builder.addContactGeometry({geometry.name,
+                                    sphere ? ContactGeometry::Shape::Sphere : ContactGeometry::Shape::HalfSpace,
+                                    convertFrame(osim, geometry.frame), geometry.radius, geometry.where});
+    }
+}
+
 }  // namespace
 
 void reportOsimConversion(const OsimConversion& conversion, const std::function<void(const std::string&)>& notes) {
@@ -401,6 +480,7 @@ OsimConversion convertOsimModel(const OsimModel& osim) {
             notImported.push_back(describeAt("CoordinateCouplerConstraint", coupler.name, coupler.where) +
                                   ": disabled in the model (the dependent coordinate is free, as in OpenSim)");
     }
+    addForceElements(osim, builder, notImported);
     for (const OsimCoordinateActuator& a : osim.coordinateActuators)
         notImported.push_back(describeAt("CoordinateActuator", a.name, a.where) + ": actuators are not wires");
     for (const OsimPointActuator& a : osim.pointActuators)

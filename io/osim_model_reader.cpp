@@ -120,6 +120,8 @@ public:
             for (const Element* joint : osim::getSetObjects(*jointSet_)) readJoint(*joint);
         if (constraintSet_)
             for (const Element* constraint : osim::getSetObjects(*constraintSet_)) readConstraint(*constraint);
+        if (contactGeometrySet_)
+            for (const Element* geometry : osim::getSetObjects(*contactGeometrySet_)) readContactGeometry(*geometry);
         if (forceSet_)
             for (const Element* force : osim::getSetObjects(*forceSet_)) readForce(*force);
         if (markerSet_)
@@ -133,6 +135,8 @@ private:
     const Element* jointSet_ = nullptr;
     const Element* constraintSet_ = nullptr;
     const Element* forceSet_ = nullptr;
+    const Element* contactGeometrySet_ = nullptr;
+    std::string contactGeometrySetPath_ = "/contactgeometryset";
     const Element* markerSet_ = nullptr;
     std::string jointSetPath_ = "/jointset", forceSetPath_ = "/forceset", markerSetPath_ = "/markerset";
     // PhysicalOffsetFrame elements by absolute path, with the frames they resolved to (bodies and ground
@@ -208,7 +212,10 @@ private:
                     else
                         addUnsupported(*component);
                 }
-            } else if (type == "ControllerSet" || type == "ContactGeometrySet" || type == "ProbeSet") {
+            } else if (type == "ContactGeometrySet") {
+                contactGeometrySet_ = child;
+                contactGeometrySetPath_ = setPath(*child, "contactgeometryset");
+            } else if (type == "ControllerSet" || type == "ProbeSet") {
                 for (const Element* object : osim::getSetObjects(*child)) addUnsupported(*object);
             } else {
                 addUnsupported(*child);
@@ -520,9 +527,111 @@ private:
             requireBody(element, "bodyB", model_.torqueActuators.back().bodyB);
         } else if (pathForceTypes().count(type)) {
             readPathForce(element, type);
+        } else if (type == "CoordinateLimitForce") {
+            readCoordinateLimitForce(element);
+        } else if (type == "PointToPointSpring") {
+            readPointToPointSpring(element);
+        } else if (type == "BushingForce") {
+            readBushingForce(element);
+        } else if (type == "HuntCrossleyForce") {
+            readHuntCrossleyForce(element);
         } else {
             addUnsupported(element);
         }
+    }
+
+    // A frame with an offset applied in it: location (m) and orientation (body-fixed XYZ, rad).
+    static OsimFrameRef offsetFrame(OsimFrameRef frame, const Eigen::Vector3d& location, const Eigen::Vector3d& orientation) {
+        frame.p_BF += frame.R_BF * location;
+        frame.R_BF = frame.R_BF * calcRotationFromBodyFixedXYZ(orientation);
+        return frame;
+    }
+
+    void readContactGeometry(const Element& element) {
+        OsimContactGeometry geometry;
+        geometry.type = element.Name();
+        geometry.name = osim::getName(element);
+        geometry.where = doc_.where(element);
+        if (geometry.type != "ContactSphere" && geometry.type != "ContactHalfSpace") {
+            addUnsupported(element);
+            return;
+        }
+        const std::string path = contactGeometrySetPath_ + "/" + geometry.name;
+        geometry.frame = offsetFrame(followFrameSocket(requireChild(element, "socket_frame"), path),
+                                     osim::readVector3(doc_, element, "location", Eigen::Vector3d::Zero()),
+                                     osim::readVector3(doc_, element, "orientation", Eigen::Vector3d::Zero()));
+        if (geometry.type == "ContactSphere") geometry.radius = osim::readRequiredDouble(doc_, element, "radius");
+        model_.contactGeometry.push_back(std::move(geometry));
+    }
+
+    void readCoordinateLimitForce(const Element& element) {
+        OsimCoordinateLimitForce force;
+        force.name = requireName(element, forceNames_, "force");
+        force.where = doc_.where(element);
+        force.appliesForce = osim::readAppliesForce(doc_, element, true);
+        force.coordinate = osim::readText(doc_, element, "coordinate");
+        requireCoordinate(element, "coordinate", force.coordinate);
+        force.upperStiffness = osim::readDouble(doc_, element, "upper_stiffness", force.upperStiffness);
+        force.upperLimit = osim::readDouble(doc_, element, "upper_limit", force.upperLimit);
+        force.lowerStiffness = osim::readDouble(doc_, element, "lower_stiffness", force.lowerStiffness);
+        force.lowerLimit = osim::readDouble(doc_, element, "lower_limit", force.lowerLimit);
+        force.damping = osim::readDouble(doc_, element, "damping", force.damping);
+        force.transition = osim::readDouble(doc_, element, "transition", force.transition);
+        model_.coordinateLimits.push_back(std::move(force));
+    }
+
+    void readPointToPointSpring(const Element& element) {
+        OsimPointToPointSpring spring;
+        spring.name = requireName(element, forceNames_, "force");
+        spring.where = doc_.where(element);
+        spring.appliesForce = osim::readAppliesForce(doc_, element, true);
+        const std::string path = forceSetPath_ + "/" + spring.name;
+        const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+        spring.point1 = offsetFrame(followFrameSocket(requireChild(element, "socket_body1"), path),
+                                    osim::readVector3(doc_, element, "point1", zero), zero);
+        spring.point2 = offsetFrame(followFrameSocket(requireChild(element, "socket_body2"), path),
+                                    osim::readVector3(doc_, element, "point2", zero), zero);
+        spring.stiffness = osim::readDouble(doc_, element, "stiffness", spring.stiffness);
+        spring.restLength = osim::readDouble(doc_, element, "rest_length", spring.restLength);
+        model_.springs.push_back(std::move(spring));
+    }
+
+    void readBushingForce(const Element& element) {
+        OsimBushingForce bushing;
+        bushing.name = requireName(element, forceNames_, "force");
+        bushing.where = doc_.where(element);
+        bushing.appliesForce = osim::readAppliesForce(doc_, element, true);
+        const std::string path = forceSetPath_ + "/" + bushing.name;
+        collectFrames(element, "frames", path);
+        bushing.frame1 = followFrameSocket(requireChild(element, "socket_frame1"), path);
+        bushing.frame2 = followFrameSocket(requireChild(element, "socket_frame2"), path);
+        const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+        bushing.rotationalStiffness = osim::readVector3(doc_, element, "rotational_stiffness", zero);
+        bushing.translationalStiffness = osim::readVector3(doc_, element, "translational_stiffness", zero);
+        bushing.rotationalDamping = osim::readVector3(doc_, element, "rotational_damping", zero);
+        bushing.translationalDamping = osim::readVector3(doc_, element, "translational_damping", zero);
+        model_.bushings.push_back(std::move(bushing));
+    }
+
+    void readHuntCrossleyForce(const Element& element) {
+        OsimHuntCrossleyForce force;
+        force.name = requireName(element, forceNames_, "force");
+        force.where = doc_.where(element);
+        force.appliesForce = osim::readAppliesForce(doc_, element, true);
+        force.transitionVelocity = osim::readDouble(doc_, element, "transition_velocity", force.transitionVelocity);
+        if (const Element* set = osim::findChild(element, "HuntCrossleyForce::ContactParametersSet"))
+            for (const Element* p : osim::getSetObjects(*set)) {
+                OsimHuntCrossleyForce::Parameters parameters;
+                std::istringstream names(osim::readText(doc_, *p, "geometry"));
+                for (std::string name; names >> name;) parameters.geometry.push_back(name);
+                parameters.stiffness = osim::readDouble(doc_, *p, "stiffness", 0);
+                parameters.dissipation = osim::readDouble(doc_, *p, "dissipation", 0);
+                parameters.staticFriction = osim::readDouble(doc_, *p, "static_friction", 0);
+                parameters.dynamicFriction = osim::readDouble(doc_, *p, "dynamic_friction", 0);
+                parameters.viscousFriction = osim::readDouble(doc_, *p, "viscous_friction", 0);
+                force.parameters.push_back(std::move(parameters));
+            }
+        model_.huntCrossley.push_back(std::move(force));
     }
 
     void readPathForce(const Element& element, const std::string& type) {

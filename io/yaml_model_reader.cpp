@@ -11,6 +11,7 @@
 #include "sinew/core/model_builder.hpp"
 #include "sinew/io/model_file.hpp"
 #include "yaml_fields.hpp"
+#include "yaml_force_elements.hpp"
 
 namespace sinew {
 namespace {
@@ -23,7 +24,7 @@ public:
     Model read(const YAML::Node& root) {
         if (!root.IsMap()) fail(root, "a model file is a mapping with keys sinew_model, name, links, joints, ...");
         requireKeys(root, "model", {"sinew_model", "name", "gravity", "links", "joints", "virtual_links", "loops", "couplers",
-                                    "wrap_objects", "wires", "contacts"});
+                                    "wrap_objects", "wires", "contacts", "contact_geometry", "force_elements"});
         const YAML::Node version = root["sinew_model"];
         if (!version) fail(root, "missing 'sinew_model: " + std::to_string(kModelFormatVersion) + "' (format version)");
         if (readInt(version, "sinew_model") != kModelFormatVersion)
@@ -39,6 +40,7 @@ public:
         for (const YAML::Node& node : sequence(root, "wrap_objects")) builder.addWrapObject(readWrapObject(node));
         for (const YAML::Node& node : sequence(root, "wires")) builder.addWire(readWire(node));
         for (const YAML::Node& node : sequence(root, "contacts")) builder.addContact(readContact(node));
+        readForceElements(*this, root, builder);
         return builder.build();
     }
 

@@ -6,15 +6,11 @@
 #include "sinew/core/error.hpp"
 #include "sinew/io/atomic_file.hpp"
 #include "sinew/io/model_file.hpp"
+#include "yaml_emit.hpp"
+#include "yaml_force_elements.hpp"
 
 namespace sinew {
 namespace {
-
-void emitVector(YAML::Emitter& out, const Eigen::Vector3d& v) {
-    out << YAML::Flow << YAML::BeginSeq << v[0] << v[1] << v[2] << YAML::EndSeq;
-}
-
-std::string linkName(const Model& model, int link) { return link == kGround ? "ground" : model.getLink(link).name; }
 
 void emitRotation(YAML::Emitter& out, const Eigen::Matrix3d& R) {
     out << YAML::Flow << YAML::BeginSeq;
@@ -304,6 +300,7 @@ std::string writeModelText(const Model& model) {
     for (const Wire& wire : model.getWires()) emitWire(out, model, wire);
     out << YAML::EndSeq;
     emitContacts(out, model);
+    emitForceElements(out, model);
     out << YAML::EndMap;
     return std::string(out.c_str()) + "\n";
 }

@@ -8,6 +8,7 @@
 #include "sinew/core/kinematics.hpp"
 #include "sinew/plugin/coordinate_constraints.hpp"
 #include "sinew/plugin/custom_mobilizer.hpp"
+#include "sinew/plugin/force_elements.hpp"
 
 namespace sinew {
 namespace {
@@ -85,6 +86,8 @@ SimbodyModel::SimbodyModel(Model model, SimbodyModelOptions options)
         addCouplerConstraint(*matter_, model_, coupler, mobilizedBodies_);
     for (int q = 0; q < model_.getNumQ(); ++q)
         if (model_.getCoordinates()[static_cast<std::size_t>(q)].locked) addLockConstraint(*matter_, model_, q, mobilizedBodies_);
+
+    if (options.forceElements) contacts_ = addForceElements(*system_, *matter_, *forces_, model_, mobilizedBodies_);
 
     if (!options.hangBy.empty()) {
         const int link = model_.findLinkIndex(options.hangBy);

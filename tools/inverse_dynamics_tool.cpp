@@ -1,12 +1,15 @@
 #include "sinew/tools/inverse_dynamics_tool.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 #include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/data.hpp"
 #include "sinew/core/error.hpp"
+#include "sinew/core/force_elements.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
+#include "sinew/core/kinematics.hpp"
 #include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/measured_loads.hpp"
 #include "sinew/tools/motion_frames.hpp"
@@ -48,11 +51,19 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
     result.name = "Inverse Dynamics Generalized Forces";
     result.columns = getGeneralizedForceNames(model);
     Data data(model);
-    Eigen::VectorXd tau(model.getNumU());
+    Eigen::VectorXd tau(model.getNumU()), elementTau(model.getNumU()), elementLinkTau(model.getNumU());
+    const bool withElements = options.forceElements && !model.getForceElements().empty();
     forEachMotionFrame(
         model, trajectory, measured ? &*measured : nullptr,
         [&](const MotionFrame& frame) {
             calcInverseDynamics(model, data, frame.q, frame.u, frame.udot, frame.appliedLinkForces, tau);
+            if (withElements) {  // inverse dynamics is linear in the applied forces: take theirs off
+                data.scratchF_G.assign(static_cast<std::size_t>(model.getNumLinks()), SpatialVector::Zero());
+                elementTau.setZero();
+                addForceElementForces(model, data, data.scratchF_G, elementTau);
+                calcGeneralizedForcesFromLinkForces(model, data, elementLinkTau);
+                tau -= elementTau + elementLinkTau;
+            }
             if (!tau.allFinite()) {
                 Eigen::Index k = 0;
                 while (std::isfinite(tau[k])) ++k;
@@ -90,6 +101,13 @@ std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std:
             notes("external_loads_model_kinematics_file is ignored: the points are taken as given in their frames");
     }
     InverseDynamicsOptions options;
+    const auto& excluded = setup.forcesToExclude;
+    options.forceElements = std::find(excluded.begin(), excluded.end(), "All") == excluded.end();
+    if (notes && options.forceElements)
+        for (const std::string& name : excluded)
+            if (name != "Muscles" && name != "Actuators")
+                notes("forces_to_exclude names '" + name + "': sinew excludes Muscles, Actuators or All, and the "
+                      "model's other force elements act");
     options.lowpassCutoffHz = setup.lowpassCutoffFrequencyForCoordinates;
     options.startTime = setup.startTime;
     options.finalTime = setup.endTime;

@@ -8,10 +8,13 @@
 #include <iomanip>
 #include <iostream>
 
+#include "sinew/core/forward_simulation.hpp"
+#include "sinew/io/model_file.hpp"
 #include "sinew/io/storage_file.hpp"
 #include "sinew/io/tool_setup.hpp"
 #include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/inverse_dynamics_tool.hpp"
+#include "support/force_element_model.hpp"
 #include "support/test_models.hpp"
 
 namespace sinew {
@@ -129,6 +132,42 @@ TEST(InverseDynamicsTool, Gait10dof18muscWalkMatchesOpenSimsReference) {
     for (const auto& [name, value] : runAndCompare("gait10dof18musc", example / "ID" / "walk_Setup_ID.xml",
                                                    example / "ID" / "Results" / "subject01_walk_ID.sto"))
         EXPECT_LE(value, 2.0) << name;
+}
+
+// The model's force elements act in inverse dynamics, as OpenSim applies every force not excluded: the
+// block-and-leg model (spring, bushing, knee limit) simulated free in the air with nothing applied needs no
+// generalized force, up to the splines' differentiation of the recorded motion; with the elements left
+// out, inverse dynamics asks for the forces they gave.
+TEST(InverseDynamicsTool, TheModelsForceElementsAct) {
+    std::string text = test::kForceElementModelText;
+    text.replace(text.find("initial_position: [0, 1.1, 0]"), 29, "initial_position: [0, 3.0, 0]");
+    const Model model = readModelText(text, "elements_in_air.yaml");
+    ForwardSimulationOptions simulation;
+    simulation.duration = 0.3;
+    simulation.reportInterval = 0.002;
+    simulation.accuracy = 1e-11;
+    simulation.initialSpeeds = Eigen::VectorXd::Constant(model.getNumU(), 0.3);
+    StorageTable motion;
+    motion.columns = getCoordinateNames(model);
+    simulateForwardSinew(model, simulation, [&](const SimulationFrame& frame) {
+        motion.times.push_back(frame.time);
+        motion.rows.emplace_back(frame.q.data(), frame.q.data() + frame.q.size());
+    });
+    InverseDynamicsOptions options;
+    options.startTime = 0.05, options.finalTime = 0.25;  // away from the splines' ends
+    const StorageTable with = runInverseDynamics(model, motion, nullptr, options);
+    options.forceElements = false;
+    const StorageTable without = runInverseDynamics(model, motion, nullptr, options);
+    double largestWith = 0, largestWithout = 0;
+    for (std::size_t r = 0; r < with.rows.size(); ++r)
+        for (std::size_t c = 0; c < with.columns.size(); ++c) {
+            largestWith = std::max(largestWith, std::fabs(with.rows[r][c]));
+            largestWithout = std::max(largestWithout, std::fabs(without.rows[r][c]));
+        }
+    std::cout << "free motion: largest generalized force " << largestWith << " with the force elements, "
+              << largestWithout << " without\n";
+    EXPECT_GT(largestWithout, 1.0);
+    EXPECT_LE(largestWith, 1e-3 * largestWithout);
 }
 
 }  // namespace

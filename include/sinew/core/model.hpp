@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "sinew/core/force_elements.hpp"
 #include "sinew/core/force_law.hpp"
 #include "sinew/core/function.hpp"
 
@@ -236,6 +237,7 @@ public:
     const std::vector<WirePoint>& getWirePoints() const { return wirePoints_; }  // all wires' points, flat
     const std::vector<WrapObject>& getWrapObjects() const { return wrapObjects_; }
     const std::vector<Contact>& getContacts() const { return contacts_; }  // the links the model names as feet
+    const ForceElements& getForceElements() const { return forceElements_; }  // forces other than wires
 
     const Eigen::Vector3d& getGravity() const { return gravity_; }  // m/s^2, in ground
     const Eigen::VectorXd& getDefaultQ() const { return defaultQ_; }  // the model file's initial pose (nq)
@@ -258,6 +260,7 @@ private:
     std::vector<WirePoint> wirePoints_;
     std::vector<WrapObject> wrapObjects_;
     std::vector<Contact> contacts_;
+    ForceElements forceElements_;
     Eigen::Vector3d gravity_ = Eigen::Vector3d(0, -9.80665, 0);
     Eigen::VectorXd defaultQ_;
     std::vector<Coordinate> coordinates_;

@@ -154,6 +154,55 @@ struct ContactSpec {
     std::string where;
 };
 
+// Force elements (force_elements.hpp) by name: links ("ground" allowed), coordinates and contact geometry.
+// Frames are a translation and body-fixed X-Y-Z angles (rad) in their link, as OpenSim's offset frames.
+struct LinkFrameSpec {
+    std::string link;
+    Eigen::Vector3d translation = Eigen::Vector3d::Zero();      // m
+    Eigen::Vector3d xyzBodyRotation = Eigen::Vector3d::Zero();  // rad
+};
+
+struct CoordinateLimitForceSpec {
+    std::string name, coordinate;
+    double upperStiffness = 0, upperLimit = 0, lowerStiffness = 0, lowerLimit = 0, damping = 0, transition = 0;
+    std::string where;
+};
+
+struct PointToPointSpringSpec {
+    std::string name, linkA, linkB;
+    Eigen::Vector3d pointA = Eigen::Vector3d::Zero(), pointB = Eigen::Vector3d::Zero();
+    double stiffness = 0, restLength = 0;
+    std::string where;
+};
+
+struct BushingForceSpec {
+    std::string name;
+    LinkFrameSpec frameA, frameB;
+    Eigen::Vector3d rotationalStiffness = Eigen::Vector3d::Zero(), translationalStiffness = Eigen::Vector3d::Zero();
+    Eigen::Vector3d rotationalDamping = Eigen::Vector3d::Zero(), translationalDamping = Eigen::Vector3d::Zero();
+    std::string where;
+};
+
+struct ContactGeometrySpec {
+    std::string name;
+    ContactGeometry::Shape shape = ContactGeometry::Shape::Sphere;
+    LinkFrameSpec frame;
+    double radius = 0;  // m, sphere
+    std::string where;
+};
+
+struct HuntCrossleySurfaceSpec {
+    std::string geometry;
+    double stiffness = 0, dissipation = 0, staticFriction = 0, dynamicFriction = 0, viscousFriction = 0;
+};
+
+struct HuntCrossleyForceSpec {
+    std::string name;
+    std::vector<HuntCrossleySurfaceSpec> surfaces;
+    double transitionVelocity = 0.01;  // m/s
+    std::string where;
+};
+
 class ModelBuilder {
 public:
     explicit ModelBuilder(std::string modelName) : name_(std::move(modelName)) {}
@@ -167,6 +216,11 @@ public:
     void addWire(WireSpec wire) { wires_.push_back(std::move(wire)); }
     void addWrapObject(WrapObjectSpec object) { wrapObjects_.push_back(std::move(object)); }
     void addContact(ContactSpec contact) { contacts_.push_back(std::move(contact)); }
+    void addCoordinateLimitForce(CoordinateLimitForceSpec force) { coordinateLimits_.push_back(std::move(force)); }
+    void addPointToPointSpring(PointToPointSpringSpec spring) { springs_.push_back(std::move(spring)); }
+    void addBushingForce(BushingForceSpec bushing) { bushings_.push_back(std::move(bushing)); }
+    void addContactGeometry(ContactGeometrySpec geometry) { contactGeometry_.push_back(std::move(geometry)); }
+    void addHuntCrossleyForce(HuntCrossleyForceSpec force) { huntCrossley_.push_back(std::move(force)); }
 
     // Validates everything and builds the model; throws ModelError naming the offending element's `where`.
     Model build() const;
@@ -174,6 +228,7 @@ public:
 private:
     struct Compilation;  // build()'s stages and the state they share (model_builder.cpp)
     void buildContacts(Model& model) const;  // after the links: resolves and checks each contact
+    void buildForceElements(Model& model) const;  // after the coordinates: resolves and checks each element
 
     std::string name_;
     Eigen::Vector3d gravity_ = Eigen::Vector3d(0, -9.80665, 0);
@@ -186,6 +241,11 @@ private:
     std::vector<WireSpec> wires_;
     std::vector<WrapObjectSpec> wrapObjects_;
     std::vector<ContactSpec> contacts_;
+    std::vector<CoordinateLimitForceSpec> coordinateLimits_;
+    std::vector<PointToPointSpringSpec> springs_;
+    std::vector<BushingForceSpec> bushings_;
+    std::vector<ContactGeometrySpec> contactGeometry_;
+    std::vector<HuntCrossleyForceSpec> huntCrossley_;
 };
 
 }  // namespace sinew

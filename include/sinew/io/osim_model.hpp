@@ -180,6 +180,53 @@ struct OsimMarker {
     std::string where;
 };
 
+// Force elements other than path forces and actuators (docs/force-elements.md), in OpenSim's units as
+// written: CoordinateLimitForce's limits and transition in degrees for a rotational coordinate, its
+// stiffnesses and damping per degree.
+struct OsimContactGeometry {
+    std::string name;
+    std::string type;  // "ContactSphere" or "ContactHalfSpace"
+    OsimFrameRef frame;  // the geometry's frame: socket_frame with location and orientation applied
+    double radius = 0;   // m, sphere
+    std::string where;
+};
+
+struct OsimCoordinateLimitForce {
+    std::string name, coordinate;
+    double upperStiffness = 1, upperLimit = 0, lowerStiffness = 1, lowerLimit = 0, damping = 0.001, transition = 0.1;
+    bool appliesForce = true;
+    std::string where;
+};
+
+struct OsimPointToPointSpring {
+    std::string name;
+    OsimFrameRef point1, point2;  // each point as a frame origin on its body
+    double stiffness = 1, restLength = 0;
+    bool appliesForce = true;
+    std::string where;
+};
+
+struct OsimBushingForce {
+    std::string name;
+    OsimFrameRef frame1, frame2;
+    Eigen::Vector3d rotationalStiffness = Eigen::Vector3d::Zero(), translationalStiffness = Eigen::Vector3d::Zero();
+    Eigen::Vector3d rotationalDamping = Eigen::Vector3d::Zero(), translationalDamping = Eigen::Vector3d::Zero();
+    bool appliesForce = true;
+    std::string where;
+};
+
+struct OsimHuntCrossleyForce {
+    struct Parameters {
+        std::vector<std::string> geometry;  // contact geometry names
+        double stiffness = 0, dissipation = 0, staticFriction = 0, dynamicFriction = 0, viscousFriction = 0;
+    };
+    std::string name;
+    std::vector<Parameters> parameters;
+    double transitionVelocity = 0.01;
+    bool appliesForce = true;
+    std::string where;
+};
+
 // Something in the file the reader does not capture (a force, constraint, joint or wrap type, a model-level
 // element it does not know), so a converter can refuse or warn.
 struct OsimUnsupported {
@@ -205,6 +252,11 @@ struct OsimModel {
     std::vector<OsimPointActuator> pointActuators;
     std::vector<OsimTorqueActuator> torqueActuators;
     std::vector<OsimMarker> markers;
+    std::vector<OsimContactGeometry> contactGeometry;
+    std::vector<OsimCoordinateLimitForce> coordinateLimits;
+    std::vector<OsimPointToPointSpring> springs;
+    std::vector<OsimBushingForce> bushings;
+    std::vector<OsimHuntCrossleyForce> huntCrossley;
     std::vector<OsimUnsupported> unsupported;
 };
 

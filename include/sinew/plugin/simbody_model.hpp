@@ -30,6 +30,7 @@ struct SimbodyModelOptions {
     // How custom joints enter Simbody: sinew's exact mobilizer, or OpenSim's FunctionBased construction
     // (for reproducing OpenSim's numbers; see sinew/plugin/custom_mobilizer.hpp for where it is off).
     SimbodyMobilizer customJoints = SimbodyMobilizer::Sinew;
+    bool forceElements = true;  // springs, bushings, coordinate limits, contact (sinew/plugin/force_elements.hpp)
 };
 
 class SimbodyModel {
@@ -75,6 +76,7 @@ private:
     // Handles to subsystems the system owns; declared after it so they go first.
     std::unique_ptr<SimTK::SimbodyMatterSubsystem> matter_;
     std::unique_ptr<SimTK::GeneralForceSubsystem> forces_;
+    std::unique_ptr<SimTK::GeneralContactSubsystem> contacts_;  // Hunt-Crossley contact; null without
     std::vector<SimTK::MobilizedBodyIndex> mobilizedBodies_;
     std::vector<SimTK::ForceIndex> wireForces_;
     std::vector<SimTK::ConstraintIndex> loopConstraints_;

@@ -19,6 +19,9 @@ struct InverseDynamicsOptions {
     double lowpassCutoffHz = -1;  // negative: no filtering (OpenSim's default)
     double startTime = -std::numeric_limits<double>::infinity();  // s, OpenSim's time_range
     double finalTime = std::numeric_limits<double>::infinity();
+    // The model's force elements (springs, bushings, limits, contact) act on the motion, as OpenSim applies
+    // every force forces_to_exclude does not name; the generalized forces are then what the rest must give.
+    bool forceElements = true;
     std::function<void(int frame, int frames)> onFrame;  // progress, optional
 };
 
@@ -32,9 +35,9 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
 
 // An OpenSim InverseDynamicsTool setup as it stands: reads its model (.osim or sinew YAML), coordinates and
 // external loads with paths relative to the setup file, runs, and writes results_directory/
-// output_gen_force_file (or into outputDirectory when given). Returns the file written. Forces other than
-// the measured loads and gravity never enter sinew's inverse dynamics, as with forces_to_exclude "Muscles";
-// `notes` receives what the run left out or could not honour.
+// output_gen_force_file (or into outputDirectory when given). Returns the file written. The wires never
+// enter sinew's inverse dynamics, as with forces_to_exclude "Muscles"; the model's force elements do unless
+// it names "All"; `notes` receives what the run left out or could not honour.
 std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std::string& outputDirectory,
                                    const std::function<void(const std::string&)>& notes,
                                    const std::function<void(int frame, int frames)>& onFrame = {});
