@@ -28,7 +28,7 @@ int runInfo(const std::vector<std::string>& args) {
                         {"muscles", c.muscles, 366},      {"tendons", c.tendons, 91},
                         {"ligaments", c.ligaments, 34},   {"cartilage", c.cartilage, 56},
                         {"wires (total)", c.wires, 547},  {"wire points", c.wirePoints, -1},
-                        {"loops", c.loops, -1}};
+                        {"loops", c.loops, -1},           {"force elements", c.forceElements, -1}};
     std::printf("  %-28s %6s %8s\n", "", "model", "paper");
     for (const Row& row : rows) {
         if (row.paper < 0) std::printf("  %-28s %6d %8s\n", row.what, row.value, "-");

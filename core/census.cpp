@@ -21,6 +21,9 @@ Census calcCensus(const Model& model) {
     census.wires = model.getNumWires();
     census.wirePoints = static_cast<int>(model.getWirePoints().size());
     census.loops = model.getNumLoops();
+    const ForceElements& elements = model.getForceElements();
+    census.forceElements = static_cast<int>(elements.coordinateLimits.size() + elements.springs.size() +
+                                            elements.bushings.size() + elements.huntCrossley.size());
     return census;
 }
 

@@ -293,10 +293,11 @@ const std::string kSmallModel = R"(<?xml version="1.0" encoding="UTF-8" ?>
       <GeneralizedForce name="reserve"><coordinate>pin_q</coordinate><optimal_force>10</optimal_force><min_control>-inf</min_control><max_control>Inf</max_control></GeneralizedForce>
       <PointActuator name="push"><body>b</body><point>0 1 0</point><point_is_global>true</point_is_global><direction>0 0 1</direction><optimal_force>5</optimal_force></PointActuator>
       <TorqueActuator name="twist"><bodyA>b</bodyA><bodyB>ground</bodyB><axis>1 0 0</axis><torque_is_global>false</torque_is_global></TorqueActuator>
-      <CoordinateLimitForce name="limit"/>
+      <CoordinateLimitForce name="limit"><coordinate>pin_q</coordinate><upper_limit>30</upper_limit><transition>2</transition></CoordinateLimitForce>
+      <ExpressionBasedCoordinateForce name="expression"/>
     </objects></ForceSet>
     <MarkerSet name="markerset"><objects><Marker name="mk"><socket_parent_frame>/bodyset/b</socket_parent_frame><location>1 2 3</location><fixed>true</fixed></Marker></objects></MarkerSet>
-    <ContactGeometrySet name="contactgeometryset"><objects><ContactSphere name="contact"/></objects></ContactGeometrySet>
+    <ContactGeometrySet name="contactgeometryset"><objects><ContactSphere name="contact"><socket_frame>/bodyset/b</socket_frame><location>0 0.1 0</location><radius>0.02</radius></ContactSphere><ContactMesh name="mesh"/></objects></ContactGeometrySet>
     <SomethingNew name="novel"/>
   </Model>
 </OpenSimDocument>
@@ -413,8 +414,18 @@ TEST(OsimModel, SmallModelWithEveryElement) {
         EXPECT_EQ(item.where, path + ":" + std::to_string(lineOf(kSmallModel, "name=\"" + item.name + "\"")));
     }
     EXPECT_EQ(unsupported, (std::set<std::string>{"WrapDoubleCylinderObst obst", "EllipsoidJoint j_ellipsoid",
-                                                  "WeldConstraint weld_c", "CoordinateLimitForce limit",
-                                                  "ContactSphere contact", "SomethingNew novel"}));
+                                                  "WeldConstraint weld_c", "ExpressionBasedCoordinateForce expression",
+                                                  "ContactMesh mesh", "SomethingNew novel"}));
+    // Force elements and contact geometry are read, in OpenSim's units and defaults.
+    ASSERT_EQ(model.coordinateLimits.size(), 1u);
+    EXPECT_EQ(model.coordinateLimits[0].coordinate, "pin_q");
+    EXPECT_EQ(model.coordinateLimits[0].upperLimit, 30);
+    EXPECT_EQ(model.coordinateLimits[0].transition, 2);
+    EXPECT_EQ(model.coordinateLimits[0].lowerStiffness, 1);
+    ASSERT_EQ(model.contactGeometry.size(), 1u);
+    EXPECT_EQ(model.contactGeometry[0].frame.body, "b");
+    EXPECT_EQ(model.contactGeometry[0].frame.p_BF, Eigen::Vector3d(0, 0.1, 0));
+    EXPECT_EQ(model.contactGeometry[0].radius, 0.02);
 }
 
 // Reading kSmallModel with `from` replaced by `to` fails at the line of `at` (searched in the changed text)

@@ -13,6 +13,7 @@ struct Census {
     int wires = 0;
     int wirePoints = 0;
     int loops = 0;
+    int forceElements = 0;  // limits, springs, bushings, contact forces (force_elements.hpp)
 };
 
 Census calcCensus(const Model& model);
