@@ -1,6 +1,7 @@
 #include "sinew/core/force_law_registry.hpp"
 
 #include "sinew/core/builtin_force_laws.hpp"
+#include "sinew/core/degroote_muscle.hpp"
 #include "sinew/core/millard_muscle.hpp"
 #include "sinew/core/thelen_muscle.hpp"
 #include "sinew/core/error.hpp"
@@ -13,6 +14,7 @@ ForceLawRegistry& ForceLawRegistry::global() {
         auto* r = new ForceLawRegistry();
         r->add("prescribed_tension", &PrescribedTension::create);
         r->add("spring_damper", &SpringDamper::create);
+        r->add("degroote_fregly2016_muscle", &DeGrooteMuscle::create);
         r->add("millard2012_muscle", &MillardMuscle::create);
         r->add("thelen2003_muscle", &ThelenMuscle::create);
         return r;

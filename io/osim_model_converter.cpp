@@ -254,12 +254,14 @@ void copyMuscleProperties(const OsimPathForce& muscle, const std::vector<std::pa
     }
 }
 
-// Millard2012EquilibriumMuscle keeps its own law and curves; every other muscle type becomes Thelen's
-// (with its curve parameters when the file gives them), which the conversion's warnings say.
+// Millard2012EquilibriumMuscle and DeGrooteFregly2016Muscle keep their own laws and curves; every other
+// muscle type becomes Thelen's (with its curve parameters when the file gives them), which the
+// conversion's warnings say.
 ForceLawSpec makeMuscleLaw(const OsimPathForce& muscle, std::vector<std::string>& warnings) {
     ForceLawSpec law;
     const bool millard = muscle.type == "Millard2012EquilibriumMuscle";
-    law.type = millard ? "millard2012_muscle" : "thelen2003_muscle";
+    const bool deGroote = muscle.type == "DeGrooteFregly2016Muscle";
+    law.type = millard ? "millard2012_muscle" : deGroote ? "degroote_fregly2016_muscle" : "thelen2003_muscle";
     law.parameters.set("max_isometric_force", {muscle.maxIsometricForce});
     law.parameters.set("optimal_fiber_length", {muscle.optimalFiberLength});
     law.parameters.set("tendon_slack_length", {muscle.tendonSlackLength});
@@ -282,6 +284,17 @@ ForceLawSpec makeMuscleLaw(const OsimPathForce& muscle, std::vector<std::string>
         for (const auto& [curve, properties] : curves)
             for (const std::string& property : properties) names.emplace_back(curve + "." + property, property);
         copyMuscleProperties(muscle, names, law);
+        return law;
+    }
+    if (deGroote) {
+        copyMuscleProperties(muscle,
+                             {{"active_force_width_scale", "active_force_width_scale"},
+                              {"fiber_damping", "fiber_damping"},
+                              {"passive_fiber_strain_at_one_norm_force", "passive_fiber_strain_at_one_norm_force"}},
+                             law);
+        const auto ignore = muscle.properties.find("ignore_passive_fiber_force");
+        if (ignore != muscle.properties.end() && (ignore->second == "true" || ignore->second == "1"))
+            law.parameters.set("ignore_passive_fiber_force", {1});
         return law;
     }
     if (muscle.type != "Thelen2003Muscle")

@@ -564,11 +564,18 @@ private:
         model_.contactGeometry.push_back(std::move(geometry));
     }
 
-    void readCoordinateLimitForce(const Element& element) {
-        OsimCoordinateLimitForce force;
+    // The name, file:line and appliesForce every force element of the ForceSet starts with.
+    template <class Force>
+    Force readForceHeader(const Element& element) {
+        Force force;
         force.name = requireName(element, forceNames_, "force");
         force.where = doc_.where(element);
         force.appliesForce = osim::readAppliesForce(doc_, element, true);
+        return force;
+    }
+
+    void readCoordinateLimitForce(const Element& element) {
+        OsimCoordinateLimitForce force = readForceHeader<OsimCoordinateLimitForce>(element);
         force.coordinate = osim::readText(doc_, element, "coordinate");
         requireCoordinate(element, "coordinate", force.coordinate);
         force.upperStiffness = osim::readDouble(doc_, element, "upper_stiffness", force.upperStiffness);
@@ -581,10 +588,7 @@ private:
     }
 
     void readPointToPointSpring(const Element& element) {
-        OsimPointToPointSpring spring;
-        spring.name = requireName(element, forceNames_, "force");
-        spring.where = doc_.where(element);
-        spring.appliesForce = osim::readAppliesForce(doc_, element, true);
+        OsimPointToPointSpring spring = readForceHeader<OsimPointToPointSpring>(element);
         const std::string path = forceSetPath_ + "/" + spring.name;
         const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
         spring.point1 = offsetFrame(followFrameSocket(requireChild(element, "socket_body1"), path),
@@ -597,10 +601,7 @@ private:
     }
 
     void readBushingForce(const Element& element) {
-        OsimBushingForce bushing;
-        bushing.name = requireName(element, forceNames_, "force");
-        bushing.where = doc_.where(element);
-        bushing.appliesForce = osim::readAppliesForce(doc_, element, true);
+        OsimBushingForce bushing = readForceHeader<OsimBushingForce>(element);
         const std::string path = forceSetPath_ + "/" + bushing.name;
         collectFrames(element, "frames", path);
         bushing.frame1 = followFrameSocket(requireChild(element, "socket_frame1"), path);
@@ -614,10 +615,7 @@ private:
     }
 
     void readHuntCrossleyForce(const Element& element) {
-        OsimHuntCrossleyForce force;
-        force.name = requireName(element, forceNames_, "force");
-        force.where = doc_.where(element);
-        force.appliesForce = osim::readAppliesForce(doc_, element, true);
+        OsimHuntCrossleyForce force = readForceHeader<OsimHuntCrossleyForce>(element);
         force.transitionVelocity = osim::readDouble(doc_, element, "transition_velocity", force.transitionVelocity);
         if (const Element* set = osim::findChild(element, "HuntCrossleyForce::ContactParametersSet"))
             for (const Element* p : osim::getSetObjects(*set)) {

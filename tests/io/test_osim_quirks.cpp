@@ -173,6 +173,40 @@ TEST(OsimQuirks, AMuscleAnchoredToGroundKeepsItsWorldPoint) {
 
 // OpenSim's own model collection (../shared/data/opensim-models): every .osim imports, point masses (the
 // double pendulums' rods: mass, zero inertia) included.
+// Each muscle type gets its own law where sinew has one (Millard's curves and DeGroote's, with their
+// properties, an empty optional property left unset), and Thelen's with a warning naming it where not.
+TEST(OsimQuirks, MuscleTypesKeepTheirOwnLaws) {
+    const std::string thelen = makeModel("0.01 0.02 0.025 0 0 0");
+    const auto convert = [&](const std::string& open, const std::string& extra, const std::string& close) {
+        std::string text = thelen;
+        text.replace(text.find("<Thelen2003Muscle name=\"pull\">"), 30, open);
+        text.replace(text.find("</Thelen2003Muscle>"), 19, extra + close);
+        return convertOsimModel(readOsimModel(writeTestFile(text)));
+    };
+    const OsimConversion millard = convert(
+        "<Millard2012EquilibriumMuscle name=\"pull\">",
+        "<fiber_damping>0.05</fiber_damping><ActiveForceLengthCurve><minimum_value>0</minimum_value></ActiveForceLengthCurve>"
+        "<FiberForceLengthCurve><stiffness_at_one_norm_force></stiffness_at_one_norm_force></FiberForceLengthCurve>",
+        "</Millard2012EquilibriumMuscle>");
+    const ForceLawSpec& m = millard.model.getWire(0).lawSpec;
+    EXPECT_EQ(m.type, "millard2012_muscle");
+    EXPECT_EQ(m.parameters.getScalar("fiber_damping"), 0.05);
+    EXPECT_EQ(m.parameters.getScalar("minimum_value"), 0);
+    EXPECT_FALSE(m.parameters.has("stiffness_at_one_norm_force"));
+    const OsimConversion deGroote = convert(
+        "<DeGrooteFregly2016Muscle name=\"pull\">",
+        "<active_force_width_scale>1.5</active_force_width_scale><ignore_passive_fiber_force>true</ignore_passive_fiber_force>",
+        "</DeGrooteFregly2016Muscle>");
+    const ForceLawSpec& d = deGroote.model.getWire(0).lawSpec;
+    EXPECT_EQ(d.type, "degroote_fregly2016_muscle");
+    EXPECT_EQ(d.parameters.getScalar("active_force_width_scale"), 1.5);
+    EXPECT_EQ(d.parameters.getScalar("ignore_passive_fiber_force"), 1);
+    EXPECT_FALSE(hasLineWith(deGroote.warnings, "DeGrooteFregly2016Muscle", "thelen"));
+    const OsimConversion rigid = convert("<RigidTendonMuscle name=\"pull\">", "", "</RigidTendonMuscle>");
+    EXPECT_EQ(rigid.model.getWire(0).lawSpec.type, "thelen2003_muscle");
+    EXPECT_TRUE(hasLineWith(rigid.warnings, "RigidTendonMuscle 'pull'", "becomes thelen2003_muscle"));
+}
+
 TEST(OsimQuirks, OpenSimsModelCollectionImports) {
     const std::filesystem::path root = std::filesystem::path(SINEW_SHARED_DIR) / "data" / "opensim-models";
     if (!std::filesystem::exists(root)) GTEST_SKIP() << root << " is absent (it ships with ../shared only)";
