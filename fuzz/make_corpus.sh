@@ -26,6 +26,26 @@ wires:
     force_law: {type: spring_damper, stiffness: 100, damping: 1, rest_length: 0.4}
 YAML
 
+# Force elements and contact geometry (docs/force-elements.md).
+cat > "$out/yaml_model/force_elements.yaml" <<'YAML'
+sinew_model: 1
+name: elements
+links:
+  - {name: block, mass: 20, com: [0, 0, 0], inertia: [0.2, 0.3, 0.25, 0.01, 0, 0.02]}
+  - {name: foot, mass: 5, com: [0, -0.25, 0], inertia: [0.1, 0.02, 0.1, 0, 0, 0]}
+joints:
+  - {name: ground_block, type: free, parent: ground, child: block, initial_position: [0, 1.1, 0]}
+  - {name: knee, type: pin, parent: block, child: foot, parent_point: [0, -0.5, 0], axis: [0, 0, 1]}
+contact_geometry:
+  - {name: floor, shape: half_space, link: ground, rotation: [0, 0, -1.5707963267948966]}
+  - {name: heel, shape: sphere, link: foot, translation: [0, -0.5, 0], radius: 0.05}
+force_elements:
+  - {type: coordinate_limit, name: limit, coordinate: knee, upper_stiffness: 20, upper_limit: 0, lower_stiffness: 20, lower_limit: -2.4, damping: 1, transition: 0.09}
+  - {type: point_to_point_spring, name: spring, link_a: block, point_a: [0.1, 0, 0], link_b: foot, point_b: [0, -0.2, 0], stiffness: 2000, rest_length: 0.8}
+  - {type: bushing, name: hip, link_a: block, rotation_a: [0.1, 0.2, 0.3], link_b: foot, translation_b: [0, 0.5, 0], rotational_stiffness: [10, 12, 14], translational_damping: [1, 2, 3]}
+  - {type: hunt_crossley, name: contact, transition_velocity: 0.1, surfaces: [{geometry: floor, stiffness: 1e7, dissipation: 0.5}, {geometry: heel, stiffness: 2e7, static_friction: 0.7}]}
+YAML
+
 cat > "$out/osim_model/tiny.osim" <<'XML'
 <?xml version="1.0" encoding="UTF-8" ?>
 <OpenSimDocument Version="40000">
@@ -101,6 +121,10 @@ else
   echo "make_corpus: $shared/opensim is absent; the corpora hold the built-in seeds only" >&2
 fi
 if [ -d "$shared/myo_sim" ]; then cp "$shared/myo_sim/basic/myomuscle.xml" "$out/mjcf_model/"; fi
+# Limits, springs, a bushing on an offset frame, Hunt-Crossley contact; and Millard muscles.
+for model in BouncingBlock/bouncing_block.osim Tug_of_War/Tug_of_War_Millard.osim; do
+  if [ -f "$shared/opensim-models/Models/$model" ]; then cp "$shared/opensim-models/Models/$model" "$out/osim_model/"; fi
+done
 # ExternalLoads without a data file still exercises the XML side.
 cat > "$out/external_loads/nodata.xml" <<'XML'
 <?xml version="1.0" encoding="UTF-8" ?>
