@@ -7,10 +7,9 @@
 #include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/data.hpp"
 #include "sinew/core/error.hpp"
-#include "sinew/core/force_elements.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
-#include "sinew/core/kinematics.hpp"
 #include "sinew/tools/coordinate_table.hpp"
+#include "sinew/tools/force_element_loads.hpp"
 #include "sinew/tools/measured_loads.hpp"
 #include "sinew/tools/motion_frames.hpp"
 #include "sinew/io/model_loading.hpp"
@@ -51,19 +50,13 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
     result.name = "Inverse Dynamics Generalized Forces";
     result.columns = getGeneralizedForceNames(model);
     Data data(model);
-    Eigen::VectorXd tau(model.getNumU()), elementTau(model.getNumU()), elementLinkTau(model.getNumU());
-    const bool withElements = options.forceElements && !model.getForceElements().empty();
+    Eigen::VectorXd tau(model.getNumU());
+    ForceElementLoads elements(model);
     forEachMotionFrame(
         model, trajectory, measured ? &*measured : nullptr,
         [&](const MotionFrame& frame) {
             calcInverseDynamics(model, data, frame.q, frame.u, frame.udot, frame.appliedLinkForces, tau);
-            if (withElements) {  // inverse dynamics is linear in the applied forces: take theirs off
-                data.scratchF_G.assign(static_cast<std::size_t>(model.getNumLinks()), SpatialVector::Zero());
-                elementTau.setZero();
-                addForceElementForces(model, data, data.scratchF_G, elementTau);
-                calcGeneralizedForcesFromLinkForces(model, data, elementLinkTau);
-                tau -= elementTau + elementLinkTau;
-            }
+            if (options.forceElements) elements.subtractFrom(data, tau);
             if (!tau.allFinite()) {
                 Eigen::Index k = 0;
                 while (std::isfinite(tau[k])) ++k;

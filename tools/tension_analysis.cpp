@@ -63,7 +63,8 @@ TensionAnalysis::TensionAnalysis(const Model& model, TensionAnalysisOptions opti
       data_(model),
       builder_(model, makeProblemSettings(model, options_, getVariables(options_))),
       problem_(builder_.makeProblem()),
-      solver_(makeSolver(options_)) {
+      solver_(makeSolver(options_)),
+      forceElements_(model) {
     const int nu = model.getNumU(), numWires = model.getNumWires();
     frame_.tau.setZero(nu);
     frame_.tension.setZero(numWires);
@@ -107,6 +108,7 @@ const TensionFrame& TensionAnalysis::calcFrame(const Eigen::VectorXd& q, const E
                                                const Eigen::VectorXd& udot,
                                                const std::vector<SpatialVector>& appliedLinkForces) {
     calcInverseDynamics(model_, data_, q, u, udot, appliedLinkForces, frame_.tau);  // kinematics at (q, u) too
+    forceElements_.subtractFrom(data_, frame_.tau);
     builder_.build(data_, frame_.tau, problem_);
     builder_.solve(*solver_, problem_, result_);
     readSolution();

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <sstream>
 
@@ -304,6 +306,35 @@ TEST(TensionAnalysis, WireStrengthsFromTheModelFileBoundTheTensions) {
         }
         EXPECT_GT(bounded, 0) << "no frame reached a strength, so the test could not tell the bounds apart";
     }
+}
+
+// The model's force elements act before the wires share the rest, as OpenSim's static optimization keeps
+// every force it does not override: arm26 with an elbow limit spring (reached from 1 rad) asks the wires for
+// inverse dynamics' torques less the limit's, which OpenSim's CoordinateLimitForce formula gives.
+TEST(TensionAnalysis, ForceElementsActBeforeTheWiresShare) {
+    std::ifstream file(test::sourcePath("models/arm26.yaml"));
+    std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    text += "force_elements:\n  - {type: coordinate_limit, name: elbow_limit, coordinate: r_elbow, upper_stiffness: 50, "
+            "upper_limit: 1.0, lower_stiffness: 50, lower_limit: 0, damping: 2, transition: 0.2}\n";
+    const Model model = readModelText(text, "arm26_with_limit.yaml");
+    const Model bare = test::loadArm26().model;
+    TensionAnalysisOptions options;
+    options.method = "qp";
+    options.maxTension = Eigen::VectorXd::Constant(model.getNumWires(), 2000);
+    options.useMusclePhysiology = false;
+    TensionAnalysis withLimit(model, options), without(bare, options);
+    const int elbowQ = model.findCoordinateIndex("r_elbow");
+    const CoordinateLimitForce& limit = model.getForceElements().coordinateLimits.front();
+    const std::vector<SpatialVector> noLoads(static_cast<std::size_t>(model.getNumLinks()), SpatialVector::Zero());
+    Eigen::VectorXd q = model.getDefaultQ(), u = Eigen::VectorXd::Constant(model.getNumU(), 0.3);
+    const Eigen::VectorXd udot = Eigen::VectorXd::Constant(model.getNumU(), -0.2);
+    for (double elbow : {0.5, 1.1, 1.3}) {
+        q[elbowQ] = elbow;
+        Eigen::VectorXd expected = without.calcFrame(q, u, udot, noLoads).tau;
+        expected[limit.u] -= calcCoordinateLimitForce(limit, elbow, u[limit.u]);
+        EXPECT_LT((withLimit.calcFrame(q, u, udot, noLoads).tau - expected).norm(), 1e-12) << elbow;
+    }
+    EXPECT_NE(calcCoordinateLimitForce(limit, 1.3, 0.3), 0);
 }
 
 TEST(TensionAnalysis, RefusesWiresWithoutStrength) {

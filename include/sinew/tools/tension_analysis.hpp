@@ -19,6 +19,7 @@
 #include "sinew/tensions/reserve_columns.hpp"
 #include "sinew/tensions/tension_problem.hpp"
 #include "sinew/tensions/tension_solver.hpp"
+#include "sinew/tools/force_element_loads.hpp"
 
 namespace sinew {
 
@@ -113,6 +114,7 @@ private:
     std::unique_ptr<TensionSolver> solver_;
     DistributionResult result_;
     TensionFrame frame_;
+    ForceElementLoads forceElements_;
 };
 
 }  // namespace sinew
