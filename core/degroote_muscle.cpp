@@ -1,6 +1,5 @@
 #include "sinew/core/degroote_muscle.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -19,7 +18,8 @@ constexpr double kD1 = -0.3211346127989808, kD2 = -8.149, kD3 = -0.374, kD4 = 0.
 
 }  // namespace
 
-DeGrooteMuscle::DeGrooteMuscle(const DeGrooteMuscleParameters& parameters) : parameters_(parameters) {
+DeGrooteMuscle::DeGrooteMuscle(const DeGrooteMuscleParameters& parameters)
+    : HillMuscle(parameters, parameters.fiberDamping), parameters_(parameters) {
     checkMuscleParameters("degroote_fregly2016_muscle", parameters);
     const auto fail = [](const std::string& what) { throw Error("degroote_fregly2016_muscle: parameter " + what); };
     if (!(parameters.activeForceWidthScale >= 1) || !std::isfinite(parameters.activeForceWidthScale))
@@ -67,41 +67,21 @@ double DeGrooteMuscle::calcPassiveForce(double normalizedLength) const {
     return (std::exp(kPassiveShape * (normalizedLength - 1) / e0) - offset) / (std::exp(kPassiveShape) - offset);
 }
 
-MuscleFiberState DeGrooteMuscle::calcFiberState(double length, double speed) const {
-    const DeGrooteMuscleParameters& p = parameters_;
-    MuscleFiberState fiber;
-    // Fixed width l_opt sin(alpha_opt) over the length along the (rigid) tendon.
-    const double height = p.optimalFiberLength * std::sin(p.pennationAngleAtOptimal);
-    const double alongTendon = std::max(length - p.tendonSlackLength, 1e-9 * p.optimalFiberLength);
-    const double fiberLength = std::hypot(height, alongTendon);
-    fiber.cosPennation = alongTendon / fiberLength;
-    fiber.normalizedLength = fiberLength / p.optimalFiberLength;
-    fiber.normalizedVelocity = speed * fiber.cosPennation / (p.maxContractionVelocity * p.optimalFiberLength);
+// The force per activation is along the tendon, as for the other laws (OpenSim's
+// DeGrooteFregly2016Muscle::calcInextensibleTendonActiveFiberForce returns it along the fibre,
+// docs/force-laws.md).
+MuscleFiberState DeGrooteMuscle::calcFiber(double length, double speed, double /*activation*/) const {
+    MuscleFiberState fiber = calcFixedWidthFiber(parameters_, length, speed);
     fiber.activeForceLength = calcActiveForceLength(fiber.normalizedLength);
     fiber.forceVelocity = calcForceVelocity(fiber.normalizedVelocity);
     fiber.passiveForce = calcPassiveForce(fiber.normalizedLength);
     return fiber;
 }
 
-double DeGrooteMuscle::doCalcTension(const WireState& state) const {
-    const MuscleFiberState fiber = calcFiberState(state.length, state.speed);
-    const double fiberForce = parameters_.activation * fiber.activeForceLength * fiber.forceVelocity +
-                              fiber.passiveForce + parameters_.fiberDamping * fiber.normalizedVelocity;
-    return parameters_.maxIsometricForce * fiberForce * fiber.cosPennation;
-}
-
-// The active fibre force per unit activation along the tendon (OpenSim's
-// DeGrooteFregly2016Muscle::calcInextensibleTendonActiveFiberForce returns it along the fibre,
-// docs/force-laws.md).
-double DeGrooteMuscle::calcActiveForceMultiplier(const WireState& state) const {
-    const MuscleFiberState fiber = calcFiberState(state.length, state.speed);
-    return fiber.activeForceLength * fiber.forceVelocity * fiber.cosPennation;
-}
-
 // The passive curve's closed-form integral from 0.2 optimal lengths (its zero), times F0 l_opt.
 double DeGrooteMuscle::doCalcPotentialEnergy(double length) const {
     if (parameters_.ignorePassiveFiberForce) return 0;
-    const double lN = calcFiberState(length, 0).normalizedLength;
+    const double lN = calcFiber(length, 0, 0).normalizedLength;
     const double e0 = parameters_.passiveFiberStrainAtOneNormForce;
     const double offset = std::exp(kPassiveShape * (kMinNormFiberLength - 1) / e0);
     const double integral = (e0 / kPassiveShape * (std::exp(kPassiveShape * (lN - 1) / e0) - offset) -

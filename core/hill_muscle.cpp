@@ -32,4 +32,27 @@ void checkMuscleParameters(const char* law, const MuscleParameters& muscle) {
     if (!(muscle.activation >= 0 && muscle.activation <= 1)) fail("'activation' must lie in [0, 1]");
 }
 
+MuscleFiberState calcFixedWidthFiber(const MuscleParameters& muscle, double length, double speed) {
+    MuscleFiberState fiber;
+    const double height = muscle.optimalFiberLength * std::sin(muscle.pennationAngleAtOptimal);
+    const double alongTendon = std::fmax(length - muscle.tendonSlackLength, 1e-9 * muscle.optimalFiberLength);
+    const double fiberLength = std::hypot(height, alongTendon);
+    fiber.cosPennation = alongTendon / fiberLength;
+    fiber.normalizedLength = fiberLength / muscle.optimalFiberLength;
+    fiber.normalizedVelocity = speed * fiber.cosPennation / (muscle.maxContractionVelocity * muscle.optimalFiberLength);
+    return fiber;
+}
+
+double HillMuscle::doCalcTension(const WireState& state) const {
+    const MuscleFiberState fiber = calcFiber(state.length, state.speed, muscle_.activation);
+    const double active = muscle_.activation * fiber.activeForceLength * fiber.forceVelocity;
+    return muscle_.maxIsometricForce * (active + fiber.passiveForce + fiberDamping_ * fiber.normalizedVelocity) *
+           fiber.cosPennation;
+}
+
+double HillMuscle::calcActiveForceMultiplier(const WireState& state) const {
+    const MuscleFiberState fiber = calcFiber(state.length, state.speed, 1.0);
+    return fiber.atMinimumLength ? 0 : fiber.activeForceLength * fiber.forceVelocity * fiber.cosPennation;
+}
+
 }  // namespace sinew

@@ -87,7 +87,8 @@ SmoothSegmentedCurve makePassiveForceLengthCurve(const MillardMuscleParameters& 
 }  // namespace
 
 MillardMuscle::MillardMuscle(const MillardMuscleParameters& parameters)
-    : parameters_(parameters),
+    : HillMuscle(parameters, parameters.fiberDamping),
+      parameters_(parameters),
       activeForceLength_(makeActiveForceLengthCurve(parameters)),
       forceVelocity_(makeForceVelocityCurve(parameters)),
       passiveForceLength_(makePassiveForceLengthCurve(parameters)) {
@@ -139,9 +140,11 @@ std::shared_ptr<const ForceLaw> MillardMuscle::create(const ForceLawParameters& 
     return std::make_shared<MillardMuscle>(p);
 }
 
-MillardFiberState MillardMuscle::calcFiberState(double length, double speed) const {
+// The pennation is the fibre's own in the force per activation too: OpenSim 4.4's static optimization takes it
+// at the normalized length (docs/force-laws.md).
+MuscleFiberState MillardMuscle::calcFiber(double length, double speed, double /*activation*/) const {
     const MillardMuscleParameters& p = parameters_;
-    MillardFiberState fiber;
+    MuscleFiberState fiber;
     // MuscleFixedWidthPennationModel on a rigid tendon: constant height l_opt sin(alpha_opt), the pennation
     // bounded by the maximum angle; the fibre clamped at the minimum length, where it cannot shorten.
     const double alongTendon = length - p.tendonSlackLength;
@@ -149,14 +152,14 @@ MillardFiberState MillardMuscle::calcFiberState(double length, double speed) con
                                    ? std::hypot(height_, alongTendon)
                                    : pennatedMinimumFiberLength_;
     fiber.atMinimumLength = fiberLength <= minimumFiberLength_;
-    fiber.length = std::max(fiberLength, minimumFiberLength_);
+    const double clamped = std::max(fiberLength, minimumFiberLength_);
     if (p.pennationAngleAtOptimal > 2.220446049250313e-16) {
-        const double sinPennation = height_ / fiber.length;
+        const double sinPennation = height_ / clamped;
         fiber.cosPennation = sinPennation < std::sin(p.maximumPennationAngle)
                                  ? std::sqrt(1 - sinPennation * sinPennation)
                                  : std::cos(p.maximumPennationAngle);
     }
-    fiber.normalizedLength = fiber.length / p.optimalFiberLength;
+    fiber.normalizedLength = clamped / p.optimalFiberLength;
     const double fiberSpeed = speed * fiber.cosPennation;
     const bool blocked = fiberLength < minimumFiberLength_ || (fiber.atMinimumLength && fiberSpeed <= 0);
     fiber.normalizedVelocity = blocked ? 0 : fiberSpeed / (p.optimalFiberLength * p.maxContractionVelocity);
@@ -166,27 +169,11 @@ MillardFiberState MillardMuscle::calcFiberState(double length, double speed) con
     return fiber;
 }
 
-double MillardMuscle::doCalcTension(const WireState& state) const {
-    const MillardFiberState fiber = calcFiberState(state.length, state.speed);
-    const double fiberForce = parameters_.activation * fiber.activeForceLength * fiber.forceVelocity +
-                              fiber.passiveForce + parameters_.fiberDamping * fiber.normalizedVelocity;
-    return parameters_.maxIsometricForce * fiberForce * fiber.cosPennation;
-}
-
-// Millard2012EquilibriumMuscle::calcInextensibleTendonActiveFiberForce(s, 1) per max isometric force, the
-// force per unit activation of OpenSim's StaticOptimization: zero for a fibre at its minimum length. The
-// pennation is the fibre's own (OpenSim 4.4 takes it at the normalized length, docs/force-laws.md).
-double MillardMuscle::calcActiveForceMultiplier(const WireState& state) const {
-    const MillardFiberState fiber = calcFiberState(state.length, state.speed);
-    if (fiber.atMinimumLength) return 0;
-    return fiber.activeForceLength * fiber.forceVelocity * fiber.cosPennation;
-}
-
 // Along a rigid tendon d(fibre length)/d(length) = cos(pennation), so the passive elastic tension's work is
 // the passive fibre force's work along the fibre (the clamped fibre's curve is zero: its minimum is below
 // the slack length).
 double MillardMuscle::doCalcPotentialEnergy(double length) const {
-    const MillardFiberState fiber = calcFiberState(length, 0);
+    const MuscleFiberState fiber = calcFiber(length, 0, 0);
     return parameters_.maxIsometricForce * parameters_.optimalFiberLength *
            passiveForceLength_.calcIntegral(fiber.normalizedLength);
 }

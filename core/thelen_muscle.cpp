@@ -34,7 +34,7 @@ double calcPassiveForce(const ThelenMuscleParameters& p, double normalizedLength
 
 }  // namespace
 
-ThelenMuscle::ThelenMuscle(const ThelenMuscleParameters& parameters) : parameters_(parameters) {
+ThelenMuscle::ThelenMuscle(const ThelenMuscleParameters& parameters) : HillMuscle(parameters, 0), parameters_(parameters) {
     checkMuscleParameters("thelen2003_muscle", parameters);
     requirePositive("fmax_muscle_strain", parameters.fmaxMuscleStrain);
     requirePositive("kshape_active", parameters.kShapeActive);
@@ -54,16 +54,9 @@ std::shared_ptr<const ForceLaw> ThelenMuscle::create(const ForceLawParameters& p
     return std::make_shared<ThelenMuscle>(p);
 }
 
-ThelenFiberState ThelenMuscle::calcFiberState(double length, double speed, double activation) const {
+MuscleFiberState ThelenMuscle::calcFiber(double length, double speed, double activation) const {
     const ThelenMuscleParameters& p = parameters_;
-    ThelenFiberState fiber;
-    // Constant thickness: the fibre's height above the tendon stays l_opt sin(alpha_opt) (Zajac 1989).
-    const double height = p.optimalFiberLength * std::sin(p.pennationAngleAtOptimal);
-    const double alongTendon = std::fmax(length - p.tendonSlackLength, 1e-9 * p.optimalFiberLength);
-    const double fiberLength = std::hypot(height, alongTendon);
-    fiber.cosPennation = alongTendon / fiberLength;
-    fiber.normalizedLength = fiberLength / p.optimalFiberLength;
-    fiber.normalizedVelocity = speed * fiber.cosPennation / (p.maxContractionVelocity * p.optimalFiberLength);
+    MuscleFiberState fiber = calcFixedWidthFiber(p, length, speed);
     const double stretch = fiber.normalizedLength - 1;
     fiber.activeForceLength = std::exp(-stretch * stretch / p.kShapeActive);
     double energy = 0;
@@ -79,24 +72,10 @@ ThelenFiberState ThelenMuscle::calcFiberState(double length, double speed, doubl
     return fiber;
 }
 
-double ThelenMuscle::doCalcTension(const WireState& state) const {
-    const ThelenFiberState fiber = calcFiberState(state.length, state.speed, parameters_.activation);
-    const double fiberForce =
-        parameters_.activation * fiber.activeForceLength * fiber.forceVelocity + fiber.passiveForce;
-    return parameters_.maxIsometricForce * fiberForce * fiber.cosPennation;
-}
-
-// OpenSim's Thelen2003Muscle::calcInextensibleTendonActiveFiberForce(s, 1) per max isometric force: what
-// its StaticOptimization takes as the force per unit activation with use_muscle_physiology.
-double ThelenMuscle::calcActiveForceMultiplier(const WireState& state) const {
-    const ThelenFiberState fiber = calcFiberState(state.length, state.speed, 1.0);
-    return fiber.activeForceLength * fiber.forceVelocity * fiber.cosPennation;
-}
-
 // Along a rigid tendon d(fibre length)/d(length) = cos(pennation), so the passive tension's work is the
 // passive fibre force's work along the fibre.
 double ThelenMuscle::doCalcPotentialEnergy(double length) const {
-    const ThelenFiberState fiber = calcFiberState(length, 0, parameters_.activation);
+    const MuscleFiberState fiber = calcFiber(length, 0, parameters_.activation);
     double energy = 0;
     calcPassiveForce(parameters_, fiber.normalizedLength, energy);
     return parameters_.maxIsometricForce * parameters_.optimalFiberLength * energy;

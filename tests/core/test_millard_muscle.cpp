@@ -135,9 +135,9 @@ TEST(MillardMuscle, AFibreAtItsMinimumLengthCarriesNoActiveForce) {
     const double height = 0.08 * std::sin(0.3);
     EXPECT_NEAR(muscle.getMinimumFiberLength(), std::max(0.4441 * 0.08, height / std::sin(std::acos(0.1))), 1e-15);
     const WireState tooShort{0.25 + 0.2 * 0.08, -0.3, 0};
-    const MillardFiberState fiber = muscle.calcFiberState(tooShort.length, tooShort.speed);
+    const MuscleFiberState fiber = muscle.calcFiber(tooShort.length, tooShort.speed, 1);
     EXPECT_TRUE(fiber.atMinimumLength);
-    EXPECT_DOUBLE_EQ(fiber.length, muscle.getMinimumFiberLength());
+    EXPECT_DOUBLE_EQ(fiber.normalizedLength * 0.08, muscle.getMinimumFiberLength());
     EXPECT_EQ(fiber.normalizedVelocity, 0);  // a clamped fibre does not shorten
     EXPECT_EQ(muscle.calcActiveForceMultiplier(tooShort), 0);
 }

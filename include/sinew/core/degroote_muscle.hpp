@@ -18,24 +18,21 @@ struct DeGrooteMuscleParameters : MuscleParameters {
     bool ignorePassiveFiberForce = false;
 };
 
-class DeGrooteMuscle final : public ForceLaw {
+class DeGrooteMuscle final : public HillMuscle {
 public:
     // Throws sinew::Error naming the parameter out of its range.
     explicit DeGrooteMuscle(const DeGrooteMuscleParameters& parameters);
     static std::shared_ptr<const ForceLaw> create(const ForceLawParameters& parameters);
 
     const DeGrooteMuscleParameters& getParameters() const { return parameters_; }
-    MuscleFiberState calcFiberState(double length, double speed) const;
+    // On a fixed-width fibre; fv does not depend on activation.
+    MuscleFiberState calcFiber(double length, double speed, double activation) const override;
     // The curves, of normalized fibre length or velocity.
     double calcActiveForceLength(double normalizedLength) const;
     static double calcForceVelocity(double normalizedVelocity);
     double calcPassiveForce(double normalizedLength) const;
 
-    std::optional<double> getMaxIsometricForce() const override { return parameters_.maxIsometricForce; }
-    double calcActiveForceMultiplier(const WireState& state) const override;
-
 protected:
-    double doCalcTension(const WireState& state) const override;
     double doCalcPotentialEnergy(double length) const override;
 
 private:

@@ -39,31 +39,22 @@ struct MillardMuscleParameters : MuscleParameters {
     double passiveCurviness = 0.75;
 };
 
-// The fibre on a rigid tendon, clamped at the minimum fibre length.
-struct MillardFiberState : MuscleFiberState {
-    double length = 0;             // m
-    bool atMinimumLength = false;  // the path is too short for the fibre: OpenSim clamps it
-};
-
-class MillardMuscle final : public ForceLaw {
+class MillardMuscle final : public HillMuscle {
 public:
     // Throws sinew::Error naming the parameter OpenSim's curve factory would refuse.
     explicit MillardMuscle(const MillardMuscleParameters& parameters);
     static std::shared_ptr<const ForceLaw> create(const ForceLawParameters& parameters);
 
     const MillardMuscleParameters& getParameters() const { return parameters_; }
-    MillardFiberState calcFiberState(double length, double speed) const;
+    // The fibre clamped at the minimum fibre length (atMinimumLength there); fv does not depend on activation.
+    MuscleFiberState calcFiber(double length, double speed, double activation) const override;
     // The minimum fibre length (m): the active force-length curve's left end or the maximum pennation's.
     double getMinimumFiberLength() const { return minimumFiberLength_; }
     const SmoothSegmentedCurve& getActiveForceLengthCurve() const { return activeForceLength_; }
     const SmoothSegmentedCurve& getForceVelocityCurve() const { return forceVelocity_; }
     const SmoothSegmentedCurve& getPassiveForceLengthCurve() const { return passiveForceLength_; }
 
-    std::optional<double> getMaxIsometricForce() const override { return parameters_.maxIsometricForce; }
-    double calcActiveForceMultiplier(const WireState& state) const override;
-
 protected:
-    double doCalcTension(const WireState& state) const override;
     double doCalcPotentialEnergy(double length) const override;
 
 private:

@@ -1,8 +1,8 @@
 #pragma once
 // "thelen2003_muscle": a Hill-type muscle with the curves of Thelen (2003) as OpenSim's Thelen2003Muscle
 // defines them, on a rigid tendon, so that the wire's tension is a function of its length, lengthening
-// speed and a constant activation (docs/force-laws.md, "Imported muscles"). The curve functions are public:
-// static optimization weighs activations with the same force-length and force-velocity factors.
+// speed and a constant activation (docs/force-laws.md, "Imported muscles"). calcFiber is public: the
+// tension distributions weigh activations with the same force-length and force-velocity factors.
 #include <memory>
 
 #include "sinew/core/force_law.hpp"
@@ -18,24 +18,16 @@ struct ThelenMuscleParameters : MuscleParameters {
     double flen = 1.4;                  // lengthening force asymptote, in max isometric forces
 };
 
-// The fibre on a rigid tendon: pennated with constant thickness l_opt sin(alpha_opt).
-using ThelenFiberState = MuscleFiberState;
-
-class ThelenMuscle final : public ForceLaw {
+class ThelenMuscle final : public HillMuscle {
 public:
     explicit ThelenMuscle(const ThelenMuscleParameters& parameters);
     static std::shared_ptr<const ForceLaw> create(const ForceLawParameters& parameters);
 
     const ThelenMuscleParameters& getParameters() const { return parameters_; }
-    // The fibre's state at a muscle-tendon length (m) and lengthening speed (m/s), the force-velocity
-    // factor taken at `activation` (Thelen's velocity scale grows with activation).
-    ThelenFiberState calcFiberState(double length, double speed, double activation) const;
-
-    std::optional<double> getMaxIsometricForce() const override { return parameters_.maxIsometricForce; }
-    double calcActiveForceMultiplier(const WireState& state) const override;
+    // On a fixed-width fibre; fv at `activation` (Thelen's velocity scale grows with activation).
+    MuscleFiberState calcFiber(double length, double speed, double activation) const override;
 
 protected:
-    double doCalcTension(const WireState& state) const override;
     double doCalcPotentialEnergy(double length) const override;
 
 private:
