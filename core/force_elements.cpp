@@ -140,7 +140,7 @@ PairMaterial combine(const HuntCrossleySurface& a, const HuntCrossleySurface& b)
             s1};
 }
 
-// Calls visit(halfSpaceSurface, sphereSurface, contact) for every touching pair of `force`.
+// Calls visit(halfSpaceSurface, sphereSurface, sphere, contact) for every touching pair of `force`.
 template <class Visit>
 void forEachContact(const Model& model, const Data& data, const HuntCrossleyForce& force, Visit visit) {
     const std::vector<ContactGeometry>& geometry = model.getForceElements().contactGeometry;
