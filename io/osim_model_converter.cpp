@@ -365,14 +365,14 @@ CoordinateLimitForceSpec convertCoordinateLimit(const OsimModel& osim, const Osi
 void addHuntCrossleyForce(const OsimModel& osim, const OsimHuntCrossleyForce& force, ModelBuilder& builder,
                           std::set<std::string>& usedGeometry, std::vector<std::string>& notImported) {
     HuntCrossleyForceSpec spec{force.name, {}, force.transitionVelocity, force.where};
-    int spheres = 0, halfSpaces = 0;
+    int spheres = 0;
     for (const OsimHuntCrossleyForce::Parameters& p : force.parameters)
         for (const std::string& name : p.geometry) {
             const auto geometry = std::find_if(osim.contactGeometry.begin(), osim.contactGeometry.end(),
                                                [&](const OsimContactGeometry& g) { return g.name == name; });
             if (geometry == osim.contactGeometry.end())
                 throw ModelError(force.where, "HuntCrossleyForce '" + force.name + "': no contact geometry '" + name + "'");
-            (geometry->type == "ContactSphere" ? spheres : halfSpaces) += 1;
+            spheres += geometry->type == "ContactSphere";
             usedGeometry.insert(name);
             spec.surfaces.push_back({name, p.stiffness, p.dissipation, p.staticFriction, p.dynamicFriction, p.viscousFriction});
         }
