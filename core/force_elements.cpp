@@ -144,15 +144,13 @@ PairMaterial combine(const HuntCrossleySurface& a, const HuntCrossleySurface& b)
 template <class Visit>
 void forEachContact(const Model& model, const Data& data, const HuntCrossleyForce& force, Visit visit) {
     const std::vector<ContactGeometry>& geometry = model.getForceElements().contactGeometry;
-    for (const HuntCrossleySurface& h : force.surfaces) {
-        const ContactGeometry& halfSpace = geometry[static_cast<std::size_t>(h.geometry)];
-        if (halfSpace.shape != ContactGeometry::Shape::HalfSpace) continue;
-        for (const HuntCrossleySurface& s : force.surfaces) {
-            const ContactGeometry& sphere = geometry[static_cast<std::size_t>(s.geometry)];
-            if (sphere.shape != ContactGeometry::Shape::Sphere || sphere.frame.link == halfSpace.frame.link) continue;
-            SphereContact contact;
-            if (findSphereContact(data, halfSpace, sphere, contact)) visit(h, s, sphere, contact);
-        }
+    for (const HuntCrossleyForce::Pair& pair : force.pairs) {
+        const HuntCrossleySurface& h = force.surfaces[static_cast<std::size_t>(pair.halfSpace)];
+        const HuntCrossleySurface& s = force.surfaces[static_cast<std::size_t>(pair.sphere)];
+        const ContactGeometry& sphere = geometry[static_cast<std::size_t>(s.geometry)];
+        SphereContact contact;
+        if (findSphereContact(data, geometry[static_cast<std::size_t>(h.geometry)], sphere, contact))
+            visit(h, s, sphere, contact);
     }
 }
 

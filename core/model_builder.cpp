@@ -901,7 +901,7 @@ void ModelBuilder::buildForceElements(Model& model) const {
         if (!(spec.transitionVelocity > 0) || !std::isfinite(spec.transitionVelocity))
             throw ModelError(spec.where, label + ": transition velocity " + std::to_string(spec.transitionVelocity) +
                                              " must be finite and > 0");
-        HuntCrossleyForce force{spec.name, {}, spec.transitionVelocity};
+        HuntCrossleyForce force{spec.name, {}, spec.transitionVelocity, {}};
         for (const HuntCrossleySurfaceSpec& surface : spec.surfaces) {
             const auto it = std::find_if(elements.contactGeometry.begin(), elements.contactGeometry.end(),
                                          [&](const ContactGeometry& g) { return g.name == surface.geometry; });
@@ -919,6 +919,17 @@ void ModelBuilder::buildForceElements(Model& model) const {
                                       surface.dissipation, surface.staticFriction, surface.dynamicFriction,
                                       surface.viscousFriction});
         }
+        const auto geometryOf = [&](const HuntCrossleySurface& s) -> const ContactGeometry& {
+            return elements.contactGeometry[static_cast<std::size_t>(s.geometry)];
+        };
+        for (std::size_t h = 0; h < force.surfaces.size(); ++h)
+            for (std::size_t s = 0; s < force.surfaces.size(); ++s) {
+                const ContactGeometry& halfSpace = geometryOf(force.surfaces[h]);
+                const ContactGeometry& sphere = geometryOf(force.surfaces[s]);
+                if (halfSpace.shape == ContactGeometry::Shape::HalfSpace && sphere.shape == ContactGeometry::Shape::Sphere &&
+                    halfSpace.frame.link != sphere.frame.link)
+                    force.pairs.push_back({static_cast<int>(h), static_cast<int>(s)});
+            }
         elements.huntCrossley.push_back(std::move(force));
     }
 }

@@ -52,30 +52,25 @@ std::unique_ptr<SimTK::GeneralContactSubsystem> addForceElements(SimTK::Multibod
     if (elements.huntCrossley.empty()) return nullptr;
     auto subsystem = std::make_unique<SimTK::GeneralContactSubsystem>(system);  // the system adopts its guts
     SimTK::GeneralContactSubsystem& contacts = *subsystem;
-    const auto geometryOf = [&](const HuntCrossleySurface& surface) -> const ContactGeometry& {
-        return elements.contactGeometry[static_cast<std::size_t>(surface.geometry)];
-    };
     // One Simbody force per sphere/half-space pair: Simbody 3.7's HuntCrossleyForce stops at its first
     // separating contact and skips the rest of its set (docs/force-elements.md), which a set of two cannot do.
     for (const HuntCrossleyForce& force : elements.huntCrossley)
-        for (const HuntCrossleySurface& h : force.surfaces) {
-            if (geometryOf(h).shape != ContactGeometry::Shape::HalfSpace) continue;
-            for (const HuntCrossleySurface& s : force.surfaces) {
-                const ContactGeometry& sphere = geometryOf(s);
-                if (sphere.shape != ContactGeometry::Shape::Sphere || sphere.frame.link == geometryOf(h).frame.link)
-                    continue;
-                const SimTK::ContactSetIndex set = contacts.createContactSet();
-                SimTK::HuntCrossleyForce huntCrossley(forces, contacts, set);
-                contacts.addBody(set, body(geometryOf(h).frame.link), SimTK::ContactGeometry::HalfSpace(),
-                                 transform(geometryOf(h).frame));
-                contacts.addBody(set, body(sphere.frame.link), SimTK::ContactGeometry::Sphere(sphere.radius),
-                                 transform(sphere.frame));
-                for (const auto& [index, surface] : {std::pair<int, const HuntCrossleySurface*>{0, &h}, {1, &s}})
-                    huntCrossley.setBodyParameters(SimTK::ContactSurfaceIndex(index), surface->stiffness,
-                                                   surface->dissipation, surface->staticFriction,
-                                                   surface->dynamicFriction, surface->viscousFriction);
-                huntCrossley.setTransitionVelocity(force.transitionVelocity);
+        for (const HuntCrossleyForce::Pair& pair : force.pairs) {
+            const SimTK::ContactSetIndex set = contacts.createContactSet();
+            SimTK::HuntCrossleyForce huntCrossley(forces, contacts, set);
+            for (const int index : {pair.halfSpace, pair.sphere}) {
+                const HuntCrossleySurface& surface = force.surfaces[static_cast<std::size_t>(index)];
+                const ContactGeometry& geometry = elements.contactGeometry[static_cast<std::size_t>(surface.geometry)];
+                const SimTK::ContactGeometry shape =
+                    geometry.shape == ContactGeometry::Shape::Sphere
+                        ? SimTK::ContactGeometry(SimTK::ContactGeometry::Sphere(geometry.radius))
+                        : SimTK::ContactGeometry(SimTK::ContactGeometry::HalfSpace());
+                contacts.addBody(set, body(geometry.frame.link), shape, transform(geometry.frame));
+                huntCrossley.setBodyParameters(SimTK::ContactSurfaceIndex(contacts.getNumBodies(set) - 1),
+                                               surface.stiffness, surface.dissipation, surface.staticFriction,
+                                               surface.dynamicFriction, surface.viscousFriction);
             }
+            huntCrossley.setTransitionVelocity(force.transitionVelocity);
         }
     return subsystem;
 }

@@ -81,6 +81,12 @@ struct HuntCrossleyForce {
     std::string name;
     std::vector<HuntCrossleySurface> surfaces;
     double transitionVelocity = 0.01;  // m/s
+    // Every half-space and sphere among the surfaces on different links, as indices into `surfaces`: the
+    // pairs that can touch (derived at build; both engines use them).
+    struct Pair {
+        int halfSpace = 0, sphere = 0;
+    };
+    std::vector<Pair> pairs;
 };
 
 struct ForceElements {
