@@ -107,7 +107,7 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
     if (!setup.externalLoadsFile.empty()) loads = readExternalLoads(setup.externalLoadsFile);
     const StorageTable motion = states ? readStorageFile(setup.statesFile)
                                        : completeCoordinateTable(model, readStorageFile(setup.coordinatesFile), note);
-    const OsimStaticOptimizationResult result =
+    OsimStaticOptimizationResult result =
         runOsimStaticOptimization(model, motion, loads ? &*loads : nullptr, options);
     if (result.flaggedFrames > 0)
         note(std::to_string(result.flaggedFrames) + " frames were not solved to optimality (status in the report)");
@@ -118,11 +118,10 @@ std::vector<std::string> runStaticOptimizationTool(const AnalyzeSetup& setup, co
     std::vector<std::string> written = {prefix + "force.sto", prefix + "activation.sto", prefix + "report.sto"};
     // OpenSim prints its results with output_precision decimals (IO::SetPrecision, "%.Nlf"); sinew's own
     // report keeps every digit.
-    StorageTable force = result.force, activation = result.activation;
-    force.decimals = activation.decimals = setup.outputPrecision;
+    result.force.decimals = result.activation.decimals = setup.outputPrecision;
     OutputFileSet outputs;
-    writeStorageFile(force, outputs, written[0]);
-    writeStorageFile(activation, outputs, written[1]);
+    writeStorageFile(result.force, outputs, written[0]);
+    writeStorageFile(result.activation, outputs, written[1]);
     writeStorageFile(result.report, outputs, written[2]);
     outputs.commit();
     return written;
