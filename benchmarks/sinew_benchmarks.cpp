@@ -2,8 +2,10 @@
 // schedule; ForwardDynamics/sinew_balanced/<model>, the balanced one) and by Simbody
 // (ForwardDynamics/simbody/<model>, the wires as the plugin's elements; ForwardDynamics/simbody_fused/<model>,
 // the wires as one lean element) at the same state of the same model in the same run, so the ratios do not
-// depend on the machine; and what the wires cost on the sinew side, the full wire Jacobian
-// (WireJacobian/<model>) or the generalized forces of all tensions without forming it (WireForces/<model>).
+// depend on the machine; on bare ball-joint trees also a hand-written articulated-body algorithm
+// (ForwardDynamics/aba/<model>, the floor); and what the wires cost on the sinew side, the dense wire Jacobian
+// (WireJacobian/<model>), the sparse J^T the tension problems take (WireJacobianSparse/<model>) or the
+// generalized forces of all tensions without forming J (WireForces/<model>).
 //
 // Every benchmark is registered once per row of the model table (benchmark_models.hpp); the model sizes go
 // into each result's counters and into the run's context, so a JSON file says what was measured.
@@ -19,6 +21,7 @@
 
 #include "support/allocation_counter.hpp"
 #include "benchmark_models.hpp"
+#include "reference_aba.hpp"
 #include "sinew/core/assembly_schedule.hpp"
 #include "sinew/core/data.hpp"
 #include "sinew/core/forward_dynamics.hpp"
@@ -142,6 +145,27 @@ void benchmarkSimbodyForwardDynamics(benchmark::State& state, ModelFixture* fixt
     timeSimbodyForwardDynamics(state, fixture->getSimbodyModel().getSystem(), fixture->getSimbodyState());
 }
 
+// The floor for a bare tree: a hand-written articulated-body algorithm (reference_aba.hpp), checked against
+// Simbody's udot as sinew is.
+void benchmarkReferenceAba(benchmark::State& state, ModelFixture* fixture) {
+    fixture->setCounters(state);
+    if (!prepareAgreedState(state, fixture)) return;
+    ReferenceAba aba(fixture->getModel());
+    Eigen::VectorXd udot(fixture->getModel().getNumU());
+    aba.calcAccelerations(fixture->getQ(), fixture->getU(), fixture->getTau(), udot);
+    const double udotDifference = fixture->calcUdotDifferenceFromSimbody(udot);
+    state.counters["udot_rel_diff"] = udotDifference;
+    if (!(udotDifference <= kUdotTolerance)) {
+        state.SkipWithError("the reference ABA's udot differs from Simbody's at the benchmark state");
+        return;
+    }
+    for (auto _ : state) {
+        aba.calcAccelerations(fixture->getQ(), fixture->getU(), fixture->getTau(), udot);
+        benchmark::DoNotOptimize(udot.data());
+        benchmark::ClobberMemory();
+    }
+}
+
 // The wires as one FusedWireForce.
 void benchmarkFusedSimbodyForwardDynamics(benchmark::State& state, ModelFixture* fixture) {
     fixture->setCounters(state);
@@ -175,6 +199,22 @@ void benchmarkWireJacobian(benchmark::State& state, ModelFixture* fixture) {
     }
 }
 
+// J^T in the sparse form the tension problems take: the wires' span links only, no dense zeroing.
+void benchmarkSparseWireJacobian(benchmark::State& state, ModelFixture* fixture) {
+    fixture->setCounters(state);
+    fixture->prepare();
+    const sinew::Model& model = fixture->getModel();
+    sinew::Data data(model);
+    Eigen::SparseMatrix<double> Jt = sinew::makeWireJacobianTransposePattern(model);
+    state.counters["nonzeros"] = static_cast<double>(Jt.nonZeros());
+    for (auto _ : state) {
+        calcWireGeometry(model, data, fixture->getQ());
+        sinew::calcWireJacobianTranspose(model, data, Jt);
+        benchmark::DoNotOptimize(Jt.valuePtr());
+        benchmark::ClobberMemory();
+    }
+}
+
 void benchmarkWireForces(benchmark::State& state, ModelFixture* fixture) {
     fixture->setCounters(state);
     fixture->prepare();
@@ -195,7 +235,8 @@ void benchmarkWireForces(benchmark::State& state, ModelFixture* fixture) {
 enum class Scope {
     All,
     ModelsWithWires,   // a peer that differs from another only in how it computes the wires
-    WireBenchmarkModels  // ModelSpec::wireBenchmarks
+    WireBenchmarkModels,  // ModelSpec::wireBenchmarks
+    BareBallTrees         // no loops, no wires, ball joints under a ball or free root: the reference ABA's
 };
 
 struct BenchmarkKind {
@@ -209,7 +250,9 @@ constexpr BenchmarkKind kBenchmarkKinds[] = {
     {"ForwardDynamics/sinew_balanced/", benchmarkSinewBalancedForwardDynamics, Scope::All},
     {"ForwardDynamics/simbody/", benchmarkSimbodyForwardDynamics, Scope::All},
     {"ForwardDynamics/simbody_fused/", benchmarkFusedSimbodyForwardDynamics, Scope::ModelsWithWires},
+    {"ForwardDynamics/aba/", benchmarkReferenceAba, Scope::BareBallTrees},
     {"WireJacobian/", benchmarkWireJacobian, Scope::WireBenchmarkModels},
+    {"WireJacobianSparse/", benchmarkSparseWireJacobian, Scope::WireBenchmarkModels},
     {"WireForces/", benchmarkWireForces, Scope::WireBenchmarkModels},
 };
 
@@ -219,6 +262,14 @@ bool runsOn(const BenchmarkKind& kind, const ModelSpec& spec, const ModelFixture
         // The fused element has no virtual-link equilibrium.
         case Scope::ModelsWithWires: return fixture.getModel().getNumWires() > 0 && fixture.getCensus().virtualLinks == 0;
         case Scope::WireBenchmarkModels: return spec.wireBenchmarks;
+        case Scope::BareBallTrees: {
+            const sinew::Model& model = fixture.getModel();
+            bool ballJoints = true;
+            for (const sinew::Joint& joint : model.getJoints())
+                ballJoints = ballJoints && (joint.type == sinew::JointType::Ball ||
+                                            (joint.type == sinew::JointType::Free && joint.parent == sinew::kGround));
+            return ballJoints && model.getNumLoops() == 0 && model.getNumWires() == 0;
+        }
     }
     return true;
 }

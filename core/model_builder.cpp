@@ -773,19 +773,36 @@ void ModelBuilder::Compilation::addWireWrap(const WireWrapSpec& wr, const std::s
     wire.wraps.push_back(wrap);
 }
 
-// The links between the wire's points (and wrap objects, side sites) and the root, tip to base.
+// The links between the wire's anchors (points, wrap objects, side sites) and the root, tip to base (a parent's
+// index is below its children's), and how many lie below the anchors' lowest common link: going tip to base,
+// that is the first link whose subtree holds every anchor.
 void ModelBuilder::Compilation::findSupportLinks(Wire& wire) const {
-    std::set<int, std::greater<int>> support;
-    auto addSupport = [&](int link) {
-        for (int l = link; l != kGround; l = model.joints_[static_cast<std::size_t>(l)].parent)
-            if (!support.insert(l).second) break;
-    };
-    for (int k = 0; k < wire.numPoints; ++k) addSupport(model.wirePoints_[static_cast<std::size_t>(wire.firstPoint + k)].link);
+    std::vector<int> anchors;
+    for (int k = 0; k < wire.numPoints; ++k) anchors.push_back(model.wirePoints_[static_cast<std::size_t>(wire.firstPoint + k)].link);
     for (const WireWrap& wrap : wire.wraps) {
-        addSupport(model.wrapObjects_[static_cast<std::size_t>(wrap.object)].link);
-        if (wrap.hasSideSite) addSupport(wrap.sideSiteLink);
+        anchors.push_back(model.wrapObjects_[static_cast<std::size_t>(wrap.object)].link);
+        if (wrap.hasSideSite) anchors.push_back(wrap.sideSiteLink);
     }
-    wire.supportLinks.assign(support.begin(), support.end());
+    std::vector<int>& support = wire.supportLinks;
+    support.clear();
+    for (const int anchor : anchors)
+        for (int l = anchor; l != kGround && std::find(support.begin(), support.end(), l) == support.end();
+             l = model.joints_[static_cast<std::size_t>(l)].parent)
+            support.push_back(l);
+    std::sort(support.begin(), support.end(), std::greater<int>());
+    std::vector<int> anchorsBelow(support.size(), 0);  // per support link: anchors in its subtree
+    auto position = [&](int link) { return std::find(support.begin(), support.end(), link) - support.begin(); };
+    for (const int anchor : anchors)  // an anchor on ground is below no link: then every support link spans
+        if (anchor != kGround) ++anchorsBelow[static_cast<std::size_t>(position(anchor))];
+    wire.numSpanLinks = static_cast<int>(support.size());
+    for (std::size_t i = 0; i < support.size(); ++i) {
+        if (anchorsBelow[i] == static_cast<int>(anchors.size())) {
+            wire.numSpanLinks = static_cast<int>(i);
+            break;
+        }
+        const int parent = model.joints_[static_cast<std::size_t>(support[i])].parent;
+        if (parent != kGround) anchorsBelow[static_cast<std::size_t>(position(parent))] += anchorsBelow[i];
+    }
 }
 
 void ModelBuilder::buildContacts(Model& model) const {

@@ -1,5 +1,9 @@
 #include "sinew/core/wire_jacobian.hpp"
 
+#include <algorithm>
+#include <string>
+
+#include "sinew/core/error.hpp"
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/wire_path.hpp"
 
@@ -15,21 +19,26 @@ void addPointForce(std::vector<SpatialVector>& F, const Data& data, int link, co
     F_link.tail<3>() += f_G;
 }
 
-// Adds to F (per link) the point forces `scale` * dL/dp at every point of wire w's path (tangent points on
-// their objects' links).
-void addWirePointForces(const Model& model, const Data& data, int w, double scale, std::vector<SpatialVector>& F) {
-    const Wire& wire = model.getWire(w);
+// Calls f(link, p_G, dL/dp_G) for every point of wire w's path (tangent points on their objects' links).
+template <typename F>
+void forEachWirePoint(const Model& model, const Data& data, const Wire& wire, int w, F&& f) {
     if (wire.isPolyline()) {
         const std::vector<WirePoint>& points = model.getWirePoints();
         for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
             const std::size_t kk = static_cast<std::size_t>(k);
-            addPointForce(F, data, points[kk].link, data.p_GP[kk], scale * data.dLdp_GP[kk]);
+            f(points[kk].link, data.p_GP[kk], data.dLdp_GP[kk]);
         }
         return;
     }
     const Data::WirePathPoint* path = data.wirePath.data() + data.wirePathStart[static_cast<std::size_t>(w)];
-    for (int i = 0; i < data.wirePathSize[static_cast<std::size_t>(w)]; ++i)
-        addPointForce(F, data, path[i].link, path[i].p_G, scale * path[i].dLdp_G);
+    for (int i = 0; i < data.wirePathSize[static_cast<std::size_t>(w)]; ++i) f(path[i].link, path[i].p_G, path[i].dLdp_G);
+}
+
+// Adds to F (per link) the point forces `scale` * dL/dp at every point of wire w's path.
+void addWirePointForces(const Model& model, const Data& data, int w, double scale, std::vector<SpatialVector>& F) {
+    forEachWirePoint(model, data, model.getWire(w), w, [&](int link, const Eigen::Vector3d& p_G, const Eigen::Vector3d& dLdp_G) {
+        addPointForce(F, data, link, p_G, scale * dLdp_G);
+    });
 }
 
 // Calls f(u index, dL/du through the point's own motion) for each moving component on wire w's path:
@@ -49,29 +58,90 @@ void forEachMotionTerm(const Model& model, const Data& data, int w, F&& f) {
     }
 }
 
+// Row w of J (a wire off the numerical-gradient path): set(u, value) once for each speed of its span links'
+// joints, then add(u, value) for its moving points' own terms. Row w is the generalized force of unit
+// "forces" dL/dp at the points (virtual work), summed tip to base as moments about ground's origin, which
+// move up the tree without a shift; the anchors at or above the span's top move rigidly and add nothing.
+template <typename Set, typename Add>
+void calcWireJacobianRow(const Model& model, Data& data, int w, Set&& set, Add&& add) {
+    const Wire& wire = model.getWire(w);
+    std::vector<SpatialVector>& W = data.scratchF_G;
+    for (int link : wire.supportLinks) W[static_cast<std::size_t>(link)].setZero();
+    forEachWirePoint(model, data, wire, w, [&](int link, const Eigen::Vector3d& p_G, const Eigen::Vector3d& dLdp_G) {
+        SpatialVector& W_link = W[static_cast<std::size_t>(link)];
+        W_link.head<3>() += p_G.cross(dLdp_G);
+        W_link.tail<3>() += dLdp_G;
+    });
+    for (int i = 0; i < wire.numSpanLinks; ++i) {
+        const int link = wire.supportLinks[static_cast<std::size_t>(i)];
+        const Joint& joint = model.getJoint(link);
+        const SpatialVector& W_link = W[static_cast<std::size_t>(link)];
+        double column[6];
+        projectOntoJoint(joint, data, link, Eigen::Vector3d::Zero(), W_link, column);
+        for (int c = 0; c < joint.nu; ++c) set(joint.uStart + c, column[c]);
+        if (joint.parent != kGround) W[static_cast<std::size_t>(joint.parent)] += W_link;
+    }
+    forEachMotionTerm(model, data, w, std::forward<Add>(add));
+}
+
 }  // namespace
 
 void calcWireJacobian(const Model& model, Data& data, Eigen::Ref<Eigen::MatrixXd> J) {
     J.setZero();
     for (int w = 0; w < model.getNumWires(); ++w) {
-        const Wire& wire = model.getWire(w);
         const int row = data.wireGradientRow[static_cast<std::size_t>(w)];
         if (row >= 0) {
             J.row(w) = data.wireLengthGradient.row(row);
             continue;
         }
-        for (int link : wire.supportLinks) data.scratchF_G[static_cast<std::size_t>(link)].setZero();
-        // Row w is the generalized force of unit "forces" dL/dp applied at the points (virtual work).
-        addWirePointForces(model, data, w, 1.0, data.scratchF_G);
-        for (int link : wire.supportLinks) {
-            const Joint& joint = model.getJoint(link);
-            const std::size_t b = static_cast<std::size_t>(link);
-            double column[6];
-            projectOntoJoint(joint, data, link, data.p_GB[b], data.scratchF_G[b], column);
-            for (int c = 0; c < joint.nu; ++c) J(w, joint.uStart + c) = column[c];
-            addToParent(model, data, link);
+        calcWireJacobianRow(
+            model, data, w, [&](int u, double value) { J(w, u) = value; }, [&](int u, double value) { J(w, u) += value; });
+    }
+}
+
+Eigen::SparseMatrix<double> makeWireJacobianTransposePattern(const Model& model) {
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int w = 0; w < model.getNumWires(); ++w) {
+        const Wire& wire = model.getWire(w);
+        for (int i = 0; i < wire.numSpanLinks; ++i) {
+            const Joint& joint = model.getJoint(wire.supportLinks[static_cast<std::size_t>(i)]);
+            for (int c = 0; c < joint.nu; ++c) entries.emplace_back(joint.uStart + c, w, 0.0);
         }
-        forEachMotionTerm(model, data, w, [&](int u, double dLdu) { J(w, u) += dLdu; });
+        for (const WirePointMotion& m : wire.motions) entries.emplace_back(m.u, w, 0.0);
+    }
+    Eigen::SparseMatrix<double> Jt(model.getNumU(), model.getNumWires());
+    Jt.setFromTriplets(entries.begin(), entries.end(), [](double a, double) { return a; });
+    Jt.makeCompressed();
+    return Jt;
+}
+
+void calcWireJacobianTranspose(const Model& model, Data& data, Eigen::SparseMatrix<double>& Jt) {
+    if (Jt.rows() != model.getNumU() || Jt.cols() != model.getNumWires() || !Jt.isCompressed())
+        throw Error("wire Jacobian: the sparse J^T is " + std::to_string(Jt.rows()) + " x " + std::to_string(Jt.cols()) +
+                    (Jt.isCompressed() ? "" : ", uncompressed") + "; expected the nu x numWires matrix of "
+                    "makeWireJacobianTransposePattern");
+    double* values = Jt.valuePtr();
+    const int* rows = Jt.innerIndexPtr();
+    const int* columnStart = Jt.outerIndexPtr();
+    for (int w = 0; w < model.getNumWires(); ++w) {
+        const int* first = rows + columnStart[w];
+        const int* last = rows + columnStart[w + 1];
+        std::fill(values + columnStart[w], values + columnStart[w + 1], 0.0);
+        // The pattern holds every speed the row can touch; the lookups are within one wire's few entries.
+        auto entry = [&](int u) -> double& {
+            const int* it = std::lower_bound(first, last, u);
+            if (it == last || *it != u)
+                throw Error("wire Jacobian: wire '" + model.getWire(w).name + "' reaches speed " + std::to_string(u) +
+                            ", outside the sparse J^T's pattern (made for another model?)");
+            return values[it - rows];
+        };
+        const int row = data.wireGradientRow[static_cast<std::size_t>(w)];
+        if (row >= 0) {
+            for (const int* it = first; it != last; ++it) values[it - rows] = data.wireLengthGradient(row, *it);
+            continue;
+        }
+        calcWireJacobianRow(
+            model, data, w, [&](int u, double value) { entry(u) = value; }, [&](int u, double value) { entry(u) += value; });
     }
 }
 

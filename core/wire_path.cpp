@@ -256,9 +256,9 @@ double calcDisplacedLength(const Model& model, Data& data, const Wire& wire, con
 }
 
 // dL/du of wire w by central differences of its whole path, OpenSim's wrap rounds included: along each
-// mobility of the joints that move its points, objects and side sites, as the rigid motion of the joint's subtree (the
-// joint's twist from its motion subspace), with the coordinate itself moved for the wire's moving and
-// conditional points. A step of 1e-6 (rad or m) keeps truncation and roundoff near 1e-10 of the moment arm.
+// mobility of the joints that move some but not all of its points, objects and side sites (the span links), as
+// the rigid motion of the joint's subtree (the joint's twist from its motion subspace), with the coordinate
+// itself moved for the wire's moving and conditional points. A step of 1e-6 (rad or m) keeps truncation and roundoff near 1e-10 of the moment arm.
 void calcLengthGradientNumerically(const Model& model, Data& data, int w) {
     constexpr double h = 1e-6;
     const Wire& wire = model.getWire(w);
@@ -276,7 +276,9 @@ void calcLengthGradientNumerically(const Model& model, Data& data, int w) {
         if (std::abs(forward - backward) > 1e-2) return std::abs(forward) < std::abs(backward) ? forward : backward;
         return 0.5 * (forward + backward);
     };
-    for (int link : wire.supportLinks) {
+    const auto spanBegin = wire.supportLinks.begin(), spanEnd = spanBegin + wire.numSpanLinks;
+    for (auto it = spanBegin; it != spanEnd; ++it) {
+        const int link = *it;
         const Joint& joint = model.getJoint(link);
         const std::size_t b = static_cast<std::size_t>(link);
         const JointMotion H_G = calcJointMotion_G(joint, data, link, data.p_GM[b]);
@@ -288,7 +290,7 @@ void calcLengthGradientNumerically(const Model& model, Data& data, int w) {
     }
     // Coordinates that move a point in its link without moving any of the wire's links.
     for (const WirePointMotion& m : wire.motions) {
-        const bool done = std::any_of(wire.supportLinks.begin(), wire.supportLinks.end(), [&](int link) {
+        const bool done = std::any_of(spanBegin, spanEnd, [&](int link) {
             const Joint& joint = model.getJoint(link);
             return m.u >= joint.uStart && m.u < joint.uStart + joint.nu;
         });

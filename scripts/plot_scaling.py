@@ -9,7 +9,8 @@ line per engine and family, the slopes in the legend.
 
 usage: /usr/bin/python3 scripts/plot_scaling.py [benchmarks.json] [--png build/forward_dynamics_scaling.png]
                                                  [--markdown]
-Targets (docs/performance.md): sinew's slope <= 1.1, and sinew >= 5x faster than Simbody on `wholebody`.
+Targets (docs/performance.md): sinew's slope <= 1.1, sinew >= 15x faster than Simbody on `wholebody`, and
+`wholebody_bare` at or below the hand-written ABA's time.
 """
 import argparse
 import json
@@ -19,7 +20,7 @@ import sys
 from collections import defaultdict
 
 TO_US = {"ns": 1e-3, "us": 1.0, "ms": 1e3, "s": 1e6}
-ENGINES = ["sinew", "sinew_balanced", "simbody", "simbody_fused"]
+ENGINES = ["sinew", "sinew_balanced", "simbody", "simbody_fused", "aba"]
 SINEW_ENGINES = ["sinew", "sinew_balanced"]
 VARIANTS = ["bare", "loops", "wires", "loops_wires"]
 VARIANT_TITLES = {"bare": "bare tree", "loops": "+ loops", "wires": "+ wires (10 per link)",
@@ -28,7 +29,7 @@ FAMILY_MODEL = re.compile(r"^(chain|tree)(\d+)(?:_(loops_wires|loops|wires))?$")
 WHOLEBODY_MODEL = re.compile(r"^wholebody(?:_(bare|loops|wires))?$")
 FIT_RANGE = (30, 1000)  # links: the smallest sizes are dominated by fixed costs
 SLOPE_TARGET = 1.1
-RATIO_TARGET = 5.0
+RATIO_TARGET = 15.0  # docs/performance.md: sinew against Simbody's lean fused element on wholebody
 NOISY_CV = 0.1
 
 
@@ -146,16 +147,19 @@ def main():
     wire_rows = []
     for model in models + [m for m in (n.split("/", 1)[1] for n in results if n.startswith("WireJacobian/"))
                            if m not in models]:
-        jac, forces = results.get("WireJacobian/" + model), results.get("WireForces/" + model)
+        jac, sparse, forces = (results.get(kind + model) for kind in ("WireJacobian/", "WireJacobianSparse/", "WireForces/"))
         if not jac and not forces:
             continue
         counters = (jac or forces)[1]
+        ratio = sparse[0] / forces[0] if sparse and forces else None
         wire_rows.append([model] + [str(int(counters.get(c, 0))) for c in ("links", "dof", "wires", "wire_points")] +
-                         [fmt(jac[0] if jac else None, 2), fmt(forces[0] if forces else None, 2)])
+                         [str(int(sparse[1].get("nonzeros", 0))) if sparse else "-"] +
+                         [fmt(x[0] if x else None, 2) for x in (jac, sparse, forces)] + [fmt(ratio, 2)])
     if wire_rows:
-        print("Wires on the sinew side (us): the full Jacobian J (wires x dof) or the generalized forces -J^T f")
-        print_table(["model", "links", "dof", "wires", "wire points", "WireJacobian us", "WireForces us"], wire_rows,
-                    args.markdown)
+        print("Wires on the sinew side (us): the dense Jacobian J (wires x dof), the sparse J^T the tension problems "
+              "take, or the generalized forces -J^T f (target: sparse <= 2x forces)")
+        print_table(["model", "links", "dof", "wires", "wire points", "J nonzeros", "WireJacobian us",
+                     "WireJacobianSparse us", "WireForces us", "sparse/forces"], wire_rows, args.markdown)
 
     # Series per (variant, family, engine): [(links, time)], and the slopes.
     series = defaultdict(list)
@@ -203,6 +207,12 @@ def main():
                 print(f"wholebody: {engine} {t[engine]:.1f} us, {peer} {t[peer]:.1f} us, ratio {ratio:.2f}: "
                       f"{'meets' if ratio >= RATIO_TARGET else 'misses'} the >= {RATIO_TARGET:g}x target")
 
+    bare = {e: value[0] for e, value in fd.get("wholebody_bare", {}).items()}
+    if "sinew" in bare and "aba" in bare:
+        ratio = bare["sinew"] / bare["aba"]
+        print(f"wholebody_bare: sinew {bare['sinew']:.1f} us, hand-written ABA {bare['aba']:.1f} us, ratio {ratio:.2f}: "
+              f"{'meets' if ratio <= 1.0 else 'misses'} the <= 1.0x target")
+
     for name, cv in noisy:
         print(f"noisy: {name}: repetitions vary by {100 * cv:.0f}% (coefficient of variation); "
               f"the fastest is used")
@@ -216,7 +226,8 @@ def plot(series, slopes, wholebody, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    colors = {"sinew": "tab:blue", "sinew_balanced": "tab:green", "simbody": "tab:red", "simbody_fused": "tab:orange"}
+    colors = {"sinew": "tab:blue", "sinew_balanced": "tab:green", "simbody": "tab:red", "simbody_fused": "tab:orange",
+              "aba": "black"}
     styles = {"chain": ("-", "o"), "tree": ("--", "s")}
     fig, axes = plt.subplots(2, 2, figsize=(13, 10), sharex=True, sharey=True)
     for ax, variant in zip(axes.flat, VARIANTS):

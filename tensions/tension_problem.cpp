@@ -34,7 +34,7 @@ TensionProblemBuilder::TensionProblemBuilder(const Model& model, TensionProblemS
       settings_(std::move(settings)),
       wires_(model, settings_.maxTension, settings_.problem, settings_.columns),
       unactuatedRows_(model, settings_.unactuatedThreshold),
-      J_(model.getNumWires(), model.getNumU()) {
+      Jt_(makeWireJacobianTransposePattern(model)) {
     if (settings_.variables == WireVariables::Activation) checkActivationSettings(model, settings_);
 }
 
@@ -82,8 +82,8 @@ void TensionProblemBuilder::rewriteInActivations(TensionProblem& problem) const 
 
 void TensionProblemBuilder::build(Data& data, const Eigen::VectorXd& tau, TensionProblem& problem) {
     calcWirePaths(model_, data);
-    calcWireJacobian(model_, data, J_);
-    wires_.update(data, J_, tau, problem.distribution);
+    calcWireJacobianTranspose(model_, data, Jt_);
+    wires_.update(data, Jt_, tau, problem.distribution);
     problem.unactuatedResidual = unactuatedRows_.apply(data, tau, model_.getNumWires(), wires_.getBlocksEnd(),
                                                        problem.distribution, problem.unactuated);
     if (settings_.variables != WireVariables::Activation) return;

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "sinew/core/error.hpp"
 #include "sinew/core/loop_force_columns.hpp"
+#include "sinew/core/wire_jacobian.hpp"
 
 namespace sinew {
 namespace {
@@ -55,14 +57,10 @@ WireProblemBuilder::WireProblemBuilder(const Model& model, Eigen::VectorXd maxTe
         for (int i = 0; i < nu; ++i)
             if (rows[static_cast<std::size_t>(i)]) entries.emplace_back(i, column, 1.0);
     };
-    for (int w = 0; w < numWires; ++w) {
-        rows.assign(static_cast<std::size_t>(nu), false);
-        for (const int link : model.getWire(w).supportLinks) {
-            const Joint& joint = model.getJoint(link);
-            for (int k = 0; k < joint.nu; ++k) rows[static_cast<std::size_t>(joint.uStart + k)] = true;
-        }
-        addColumn(w);
-    }
+    // The wires' columns are -J^T's, in its pattern, so a sparse J^T is copied value for value.
+    const Eigen::SparseMatrix<double> wirePattern = makeWireJacobianTransposePattern(model);
+    for (int w = 0; w < numWires; ++w)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(wirePattern, w); it; ++it) entries.emplace_back(it.row(), w, 1.0);
     blockStart_.assign(1, numWires);
     for (const std::shared_ptr<ProblemColumns>& block : columns_) {
         block->addPattern(blockStart_.back(), entries);
@@ -105,19 +103,44 @@ DistributionProblem WireProblemBuilder::makeProblem() const {
     return problem;
 }
 
+void WireProblemBuilder::checkFrame(const Eigen::VectorXd& tau, const DistributionProblem& problem) const {
+    if (tau.size() != model_.getNumU())
+        throw Error("wire problem: tau has " + std::to_string(tau.size()) + " entries, expected nu = " +
+                    std::to_string(model_.getNumU()));
+    if (problem.A.nonZeros() != pattern_.nonZeros() || problem.A.cols() != pattern_.cols() || !problem.A.isCompressed())
+        throw Error("wire problem: the problem was not made by this builder's makeProblem()");
+}
+
 void WireProblemBuilder::update(Data& data, const Eigen::MatrixXd& J, const Eigen::VectorXd& tau,
                                 DistributionProblem& problem) const {
     const int nu = model_.getNumU(), numWires = model_.getNumWires();
     if (J.rows() != numWires || J.cols() != nu)
         throw Error("wire problem: J is " + std::to_string(J.rows()) + " x " + std::to_string(J.cols()) +
                     ", expected numWires x nu = " + std::to_string(numWires) + " x " + std::to_string(nu));
-    if (tau.size() != nu)
-        throw Error("wire problem: tau has " + std::to_string(tau.size()) + " entries, expected nu = " + std::to_string(nu));
-    if (problem.A.nonZeros() != pattern_.nonZeros() || problem.A.cols() != pattern_.cols())
-        throw Error("wire problem: the problem was not made by this builder's makeProblem()");
+    checkFrame(tau, problem);
+    for (int w = 0; w < numWires; ++w)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, w); it; ++it) it.valueRef() = -J(w, it.row());
+    updateAfterWires(data, tau, problem);
+}
+
+void WireProblemBuilder::update(Data& data, const Eigen::SparseMatrix<double>& Jt, const Eigen::VectorXd& tau,
+                                DistributionProblem& problem) const {
+    const int numWires = model_.getNumWires();
+    checkFrame(tau, problem);
+    const bool samePattern = Jt.rows() == model_.getNumU() && Jt.cols() == numWires && Jt.isCompressed() &&
+                             std::equal(Jt.outerIndexPtr(), Jt.outerIndexPtr() + numWires + 1, problem.A.outerIndexPtr()) &&
+                             std::equal(Jt.innerIndexPtr(), Jt.innerIndexPtr() + Jt.nonZeros(), problem.A.innerIndexPtr());
+    if (!samePattern)
+        throw Error("wire problem: the sparse J^T (" + std::to_string(Jt.rows()) + " x " + std::to_string(Jt.cols()) +
+                    ") is not in this model's pattern; make it by makeWireJacobianTransposePattern");
+    std::transform(Jt.valuePtr(), Jt.valuePtr() + Jt.nonZeros(), problem.A.valuePtr(), std::negate<double>());
+    updateAfterWires(data, tau, problem);
+}
+
+void WireProblemBuilder::updateAfterWires(Data& data, const Eigen::VectorXd& tau, DistributionProblem& problem) const {
+    const int nu = model_.getNumU(), numWires = model_.getNumWires();
     double meanSquaredArm = 0;
     for (int w = 0; w < numWires; ++w) {
-        for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, w); it; ++it) it.valueRef() = -J(w, it.row());
         dropRoundoff(problem.A, w);
         meanSquaredArm += problem.A.col(w).squaredNorm();
     }

@@ -1,6 +1,6 @@
 // Paths with OpenSim's features (wraps over cylinders, spheres with a quadrant, ellipsoids, two wraps on one
 // wire, conditional and moving points): the Jacobian against central differences of the length, the
-// speeds it predicts, tau = -J^T f, and no allocation while evaluating.
+// speeds it predicts, tau = -J^T f, the sparse J^T, and no allocation while evaluating.
 #include <gtest/gtest.h>
 
 #include <iostream>
@@ -146,6 +146,7 @@ TEST(WirePathFeatures, JacobianPredictsSpeedsAndGivesTheGeneralizedForces) {
     std::normal_distribution<double> normal;
     Data data(model);
     Eigen::MatrixXd J(model.getNumWires(), model.getNumU());
+    Eigen::SparseMatrix<double> Jt = makeWireJacobianTransposePattern(model);
     Eigen::VectorXd tau(model.getNumU()), tensions(model.getNumWires());
     for (int trial = 0; trial < 30; ++trial) {
         Eigen::VectorXd u(model.getNumU());
@@ -157,6 +158,9 @@ TEST(WirePathFeatures, JacobianPredictsSpeedsAndGivesTheGeneralizedForces) {
         calcWireSpeeds(model, data);
         calcWireJacobian(model, data, J);
         EXPECT_LE((J * u - data.wireSpeed).lpNorm<Eigen::Infinity>(), 1e-14) << trial;
+        // The sparse J^T's pattern holds the moving points' coordinates and the ellipsoid wires' gradients.
+        calcWireJacobianTranspose(model, data, Jt);
+        EXPECT_EQ((Eigen::MatrixXd(Jt.transpose()) - J).cwiseAbs().maxCoeff(), 0.0) << trial;
         calcWireGeneralizedForces(model, data, tensions, tau);
         EXPECT_LE((tau + J.transpose() * tensions).lpNorm<Eigen::Infinity>(), 1e-12 * tensions.sum()) << trial;
     }
@@ -169,6 +173,7 @@ TEST(WirePathFeatures, EvaluationAllocatesNothing) {
     const Eigen::VectorXd q = test::randomWrapArmPose(model, rng), u = Eigen::VectorXd::Ones(model.getNumU());
     Data data(model);
     Eigen::MatrixXd J(model.getNumWires(), model.getNumU());
+    Eigen::SparseMatrix<double> Jt = makeWireJacobianTransposePattern(model);
     Eigen::VectorXd tau(model.getNumU()), tensions = Eigen::VectorXd::Ones(model.getNumWires());
     const long long before = test::getAllocationCount();
     calcPositionKinematics(model, data, q);
@@ -176,6 +181,7 @@ TEST(WirePathFeatures, EvaluationAllocatesNothing) {
     calcWirePaths(model, data);
     calcWireSpeeds(model, data);
     calcWireJacobian(model, data, J);
+    calcWireJacobianTranspose(model, data, Jt);
     calcWireGeneralizedForces(model, data, tensions, tau);
     EXPECT_EQ(test::getAllocationCount() - before, 0);
 }

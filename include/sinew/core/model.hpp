@@ -199,6 +199,10 @@ struct Wire {
     // Links whose joints move at least one of the wire's points, wrap objects or side sites, children before
     // parents; Jacobian and force passes visit only these (derived at build).
     std::vector<int> supportLinks;
+    // The first numSpanLinks of supportLinks lie below the lowest link that carries all of those anchors: the
+    // joints that change the wire's length. That link's joint and those above it move every anchor rigidly,
+    // so their columns of J are zero (derived at build).
+    int numSpanLinks = 0;
 
     bool isPolyline() const { return conditions.empty() && motions.empty() && wraps.empty(); }
 };

@@ -84,7 +84,7 @@ private:
     TensionProblemSettings settings_;
     WireProblemBuilder wires_;
     UnactuatedRows unactuatedRows_;
-    Eigen::MatrixXd J_;  // (numWires x nu)
+    Eigen::SparseMatrix<double> Jt_;  // J^T (nu x numWires) in makeWireJacobianTransposePattern's pattern
 };
 
 }  // namespace sinew

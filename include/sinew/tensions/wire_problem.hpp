@@ -44,6 +44,10 @@ public:
     // calcPositionKinematics at the frame's q (and what the blocks read; its scratchF_G is used as
     // workspace for the loop columns).
     void update(Data& data, const Eigen::MatrixXd& J, const Eigen::VectorXd& tau, DistributionProblem& problem) const;
+    // The same from J^T in sparse form (calcWireJacobianTranspose, in makeWireJacobianTransposePattern's
+    // pattern), copied without a lookup: what a frame of tensions from motion uses.
+    void update(Data& data, const Eigen::SparseMatrix<double>& Jt, const Eigen::VectorXd& tau,
+                DistributionProblem& problem) const;
 
     const Model& getModel() const { return model_; }
     int getNumBlocks() const { return static_cast<int>(columns_.size()); }
@@ -55,6 +59,10 @@ public:
     const std::vector<bool>& getVirtualLinkRows() const { return virtualLinkRows_; }
 
 private:
+    void checkFrame(const Eigen::VectorXd& tau, const DistributionProblem& problem) const;
+    // Everything of update() but the wires' column values: their roundoff, the QP weights, blocks, loops, target.
+    void updateAfterWires(Data& data, const Eigen::VectorXd& tau, DistributionProblem& problem) const;
+
     const Model& model_;
     Eigen::VectorXd maxTension_;
     WireProblemOptions options_;
