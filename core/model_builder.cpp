@@ -785,23 +785,25 @@ void ModelBuilder::Compilation::findSupportLinks(Wire& wire) const {
     }
     std::vector<int>& support = wire.supportLinks;
     support.clear();
+    std::vector<int> anchorsBelow(model.joints_.size(), -1);  // per link: anchors in its subtree; -1 off the support
     for (const int anchor : anchors)
-        for (int l = anchor; l != kGround && std::find(support.begin(), support.end(), l) == support.end();
-             l = model.joints_[static_cast<std::size_t>(l)].parent)
+        for (int l = anchor; l != kGround && anchorsBelow[static_cast<std::size_t>(l)] < 0;
+             l = model.joints_[static_cast<std::size_t>(l)].parent) {
+            anchorsBelow[static_cast<std::size_t>(l)] = 0;
             support.push_back(l);
+        }
     std::sort(support.begin(), support.end(), std::greater<int>());
-    std::vector<int> anchorsBelow(support.size(), 0);  // per support link: anchors in its subtree
-    auto position = [&](int link) { return std::find(support.begin(), support.end(), link) - support.begin(); };
     for (const int anchor : anchors)  // an anchor on ground is below no link: then every support link spans
-        if (anchor != kGround) ++anchorsBelow[static_cast<std::size_t>(position(anchor))];
+        if (anchor != kGround) ++anchorsBelow[static_cast<std::size_t>(anchor)];
     wire.numSpanLinks = static_cast<int>(support.size());
     for (std::size_t i = 0; i < support.size(); ++i) {
-        if (anchorsBelow[i] == static_cast<int>(anchors.size())) {
+        const std::size_t link = static_cast<std::size_t>(support[i]);
+        if (anchorsBelow[link] == static_cast<int>(anchors.size())) {
             wire.numSpanLinks = static_cast<int>(i);
             break;
         }
-        const int parent = model.joints_[static_cast<std::size_t>(support[i])].parent;
-        if (parent != kGround) anchorsBelow[static_cast<std::size_t>(position(parent))] += anchorsBelow[i];
+        const int parent = model.joints_[link].parent;
+        if (parent != kGround) anchorsBelow[static_cast<std::size_t>(parent)] += anchorsBelow[link];
     }
 }
 

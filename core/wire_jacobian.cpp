@@ -58,8 +58,8 @@ void forEachMotionTerm(const Model& model, const Data& data, int w, F&& f) {
     }
 }
 
-// Row w of J (a wire off the numerical-gradient path): set(u, value) once for each speed of its span links'
-// joints, then add(u, value) for its moving points' own terms. Row w is the generalized force of unit
+// Row w of J (a wire off the numerical-gradient path): set(uStart, nu, values) once for each span link's
+// joint, then add(u, value) for its moving points' own terms. Row w is the generalized force of unit
 // "forces" dL/dp at the points (virtual work), summed tip to base as moments about ground's origin, which
 // move up the tree without a shift; the anchors at or above the span's top move rigidly and add nothing.
 template <typename Set, typename Add>
@@ -77,8 +77,14 @@ void calcWireJacobianRow(const Model& model, Data& data, int w, Set&& set, Add&&
         const Joint& joint = model.getJoint(link);
         const SpatialVector& W_link = W[static_cast<std::size_t>(link)];
         double column[6];
-        projectOntoJoint(joint, data, link, Eigen::Vector3d::Zero(), W_link, column);
-        for (int c = 0; c < joint.nu; ++c) set(joint.uStart + c, column[c]);
+        if (joint.type == JointType::Ball) {  // most span links: H^T W inline, the moment taken about the centre
+            const std::size_t b = static_cast<std::size_t>(link);
+            Eigen::Map<Eigen::Vector3d>{column} =
+                data.R_GF[b].transpose() * (W_link.head<3>() - data.p_GM[b].cross(W_link.tail<3>()));
+        } else {
+            projectOntoJoint(joint, data, link, Eigen::Vector3d::Zero(), W_link, column);
+        }
+        if (joint.nu > 0) set(joint.uStart, joint.nu, column);
         if (joint.parent != kGround) W[static_cast<std::size_t>(joint.parent)] += W_link;
     }
     forEachMotionTerm(model, data, w, std::forward<Add>(add));
@@ -95,7 +101,10 @@ void calcWireJacobian(const Model& model, Data& data, Eigen::Ref<Eigen::MatrixXd
             continue;
         }
         calcWireJacobianRow(
-            model, data, w, [&](int u, double value) { J(w, u) = value; }, [&](int u, double value) { J(w, u) += value; });
+            model, data, w, [&](int uStart, int nu, const double* values) {
+                for (int c = 0; c < nu; ++c) J(w, uStart + c) = values[c];
+            },
+            [&](int u, double value) { J(w, u) += value; });
     }
 }
 
@@ -140,8 +149,10 @@ void calcWireJacobianTranspose(const Model& model, Data& data, Eigen::SparseMatr
             for (const int* it = first; it != last; ++it) values[it - rows] = data.wireLengthGradient(row, *it);
             continue;
         }
+        // A joint's speeds are consecutive rows of the column.
         calcWireJacobianRow(
-            model, data, w, [&](int u, double value) { entry(u) = value; }, [&](int u, double value) { entry(u) += value; });
+            model, data, w, [&](int uStart, int nu, const double* block) { std::copy(block, block + nu, &entry(uStart)); },
+            [&](int u, double value) { entry(u) += value; });
     }
 }
 
