@@ -66,8 +66,14 @@ template <typename Set, typename Add>
 void calcWireJacobianRow(const Model& model, Data& data, int w, Set&& set, Add&& add) {
     const Wire& wire = model.getWire(w);
     std::vector<SpatialVector>& W = data.scratchF_G;
-    for (int link : wire.supportLinks) W[static_cast<std::size_t>(link)].setZero();
+    // Only the span links and their top (the lowest common link, which takes the last sum) are touched, so
+    // a wire costs its span, not its depth in the tree. A support link lies among them iff its index is at
+    // least the top's (parents' indices are lower).
+    const std::size_t touched = std::min(wire.supportLinks.size(), static_cast<std::size_t>(wire.numSpanLinks) + 1);
+    const int top = wire.supportLinks.empty() ? kGround : wire.supportLinks[touched - 1];
+    for (std::size_t i = 0; i < touched; ++i) W[static_cast<std::size_t>(wire.supportLinks[i])].setZero();
     forEachWirePoint(model, data, wire, w, [&](int link, const Eigen::Vector3d& p_G, const Eigen::Vector3d& dLdp_G) {
+        if (link < top) return;  // above the span: moves with every anchor
         SpatialVector& W_link = W[static_cast<std::size_t>(link)];
         W_link.head<3>() += p_G.cross(dLdp_G);
         W_link.tail<3>() += dLdp_G;

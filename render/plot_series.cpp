@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -40,9 +41,14 @@ std::vector<PlotSeries> readStorageSeries(const std::string& path, const std::ve
 std::vector<PlotSeries> readBenchmarkScaling(const std::string& path, const std::string& filter) {
     std::ifstream in(path);
     if (!in) throw Error(path + ": cannot open");
+    // Google Benchmark writes a counter's coefficient of variation over equal repetitions (0 / 0) as NaN,
+    // which JSON has no word for; such values (aggregates', which are skipped) are read as null.
+    static const std::regex nonFinite(R"(:(\s*)-?(NaN|Infinity)\b)");
+    const std::string text =
+        std::regex_replace(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()), nonFinite, ":$1null");
     nlohmann::json document;
     try {
-        document = nlohmann::json::parse(in);
+        document = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         throw Error(path + ": not JSON: " + e.what());
     }

@@ -73,6 +73,7 @@ TEST(LinePlot, MissingColumnNamesFileAndColumn) {
     }
 }
 
+// Google Benchmark JSON as it is written: repetitions, aggregates (whose counters may be NaN), a skipped run.
 std::string writeBenchmarks() {
     const std::string path = testPath("benchmarks.json");
     std::ofstream(path) << R"({"context": {}, "benchmarks": [
@@ -80,6 +81,7 @@ std::string writeBenchmarks() {
  {"name": "FD/sinew/chain10", "run_type": "iteration", "cpu_time": 900, "time_unit": "ns", "links": 10},
  {"name": "FD/sinew/chain100", "run_type": "iteration", "cpu_time": 10, "time_unit": "us", "links": 100},
  {"name": "FD/sinew/chain100_mean", "run_name": "FD/sinew/chain100", "run_type": "aggregate", "cpu_time": 50, "time_unit": "us"},
+ {"name": "FD/sinew/chain100_cv", "run_name": "FD/sinew/chain100", "run_type": "aggregate", "cpu_time": 0.01, "time_unit": "us", "allocations": NaN, "max": -Infinity},
  {"name": "FD/simbody/tree40_loops", "run_type": "iteration", "cpu_time": 0.2, "time_unit": "ms"},
  {"name": "FD/simbody/tree80_loops", "run_type": "iteration", "cpu_time": 0.5, "time_unit": "ms"},
  {"name": "FD/simbody/wholebody", "run_type": "iteration", "cpu_time": 0.2, "time_unit": "ms", "links": 100},
