@@ -60,8 +60,11 @@ void forEachMotionTerm(const Model& model, const Data& data, int w, F&& f) {
 
 // Row w of J (a wire off the numerical-gradient path): set(uStart, nu, values) once for each span link's
 // joint, then add(u, value) for its moving points' own terms. Row w is the generalized force of unit
-// "forces" dL/dp at the points (virtual work), summed tip to base as moments about ground's origin, which
-// move up the tree without a shift; the anchors at or above the span's top move rigidly and add nothing.
+// "forces" dL/dp at the points (virtual work), summed tip to base with their moments about ground's origin,
+// so they move up the tree without a shift; the anchors at or above the span's top move rigidly and add
+// nothing. (Moments about the wire's first point instead keep more digits far from the origin, but moved the
+// QP of WireProblem.LpAndQpAreOptimalOverAMotionOfAFloatingModel to a dual KKT residual of 1.01e-6 on two
+// frames, docs/wire-jacobian.md.)
 template <typename Set, typename Add>
 void calcWireJacobianRow(const Model& model, Data& data, int w, Set&& set, Add&& add) {
     const Wire& wire = model.getWire(w);
