@@ -8,7 +8,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <set>
 
 #include "sinew/core/error.hpp"
 #include "sinew/core/force_law_registry.hpp"

@@ -258,7 +258,8 @@ double calcDisplacedLength(const Model& model, Data& data, const Wire& wire, con
 // dL/du of wire w by central differences of its whole path, OpenSim's wrap rounds included: along each
 // mobility of the joints that move some but not all of its points, objects and side sites (the span links), as
 // the rigid motion of the joint's subtree (the joint's twist from its motion subspace), with the coordinate
-// itself moved for the wire's moving and conditional points. A step of 1e-6 (rad or m) keeps truncation and roundoff near 1e-10 of the moment arm.
+// itself moved for the wire's moving and conditional points. A step of 1e-6 (rad or m) keeps truncation and
+// roundoff near 1e-10 of the moment arm.
 void calcLengthGradientNumerically(const Model& model, Data& data, int w) {
     constexpr double h = 1e-6;
     const Wire& wire = model.getWire(w);
