@@ -319,14 +319,27 @@ void MujocoReference::calcKinematics(const Eigen::VectorXd& qpos) {
     mj_tendon(model_.get(), data_.get());
 }
 
-double MujocoReference::calcJointCouplingViolation(const Eigen::VectorXd& qpos) {
+double MujocoReference::calcEqualityViolation(const Eigen::VectorXd& qpos, bool connects) {
     calcKinematics(qpos);
     mj_fwdPosition(model_.get(), data_.get());
     double worst = 0;
     for (int i = 0; i < data_->nefc; ++i)
-        if (data_->efc_type[i] == mjCNSTR_EQUALITY && model_->eq_type[data_->efc_id[i]] == mjEQ_JOINT)
+        if (data_->efc_type[i] == mjCNSTR_EQUALITY && model_->eq_type[data_->efc_id[i]] == (connects ? mjEQ_CONNECT : mjEQ_JOINT))
             worst = std::max(worst, std::abs(data_->efc_pos[i]));
     return worst;
+}
+
+Eigen::VectorXd MujocoReference::calcAccelerations(const Eigen::VectorXd& qpos, const Eigen::VectorXd& qvel,
+                                                   const Eigen::VectorXd& appliedForces) {
+    if (qpos.size() != model_->nq || qvel.size() != model_->nv || appliedForces.size() != model_->nv)
+        throw std::runtime_error("calcAccelerations: expected qpos of " + std::to_string(model_->nq) + " and qvel and forces of " +
+                                 std::to_string(model_->nv));
+    mj_resetData(model_.get(), data_.get());
+    Eigen::Map<Eigen::VectorXd>(data_->qpos, model_->nq) = qpos;
+    Eigen::Map<Eigen::VectorXd>(data_->qvel, model_->nv) = qvel;
+    Eigen::Map<Eigen::VectorXd>(data_->qfrc_applied, model_->nv) = appliedForces;
+    mj_forward(model_.get(), data_.get());
+    return Eigen::Map<const Eigen::VectorXd>(data_->qacc, model_->nv);
 }
 
 Eigen::VectorXd MujocoReference::integrateQpos(const Eigen::VectorXd& qpos, const Eigen::VectorXd& qvel,

@@ -76,7 +76,12 @@ public:
     // mj_kinematics, mj_comPos and mj_tendon at qpos (nq); the getters below read their results.
     void calcKinematics(const Eigen::VectorXd& qpos);
     // The largest |residual| of MuJoCo's joint equality constraints at qpos (mj_fwdPosition's efc_pos).
-    double calcJointCouplingViolation(const Eigen::VectorXd& qpos);
+    double calcJointCouplingViolation(const Eigen::VectorXd& qpos) { return calcEqualityViolation(qpos, false); }
+    // The same for its connect equalities (ball-joint loops), m.
+    double calcConnectViolation(const Eigen::VectorXd& qpos) { return calcEqualityViolation(qpos, true); }
+    // MuJoCo's forward dynamics (mj_forward): qacc (nv) at qpos, qvel, with qfrc_applied as the only input.
+    Eigen::VectorXd calcAccelerations(const Eigen::VectorXd& qpos, const Eigen::VectorXd& qvel,
+                                      const Eigen::VectorXd& appliedForces);
     // qpos moved along qvel (nv) for a time dt, quaternions on their manifold (mj_integratePos).
     Eigen::VectorXd integrateQpos(const Eigen::VectorXd& qpos, const Eigen::VectorXd& qvel, double dt) const;
     Eigen::Vector3d getBodyPosition(const std::string& body) const;  // xpos, m, world frame
@@ -86,6 +91,7 @@ public:
     Eigen::VectorXd getTendonJacobian(const std::string& tendon) const;  // ten_J row (nv): d length / d qvel
 
 private:
+    double calcEqualityViolation(const Eigen::VectorXd& qpos, bool connects);
     int findId(int type, const std::string& name) const;  // mjtObj type; throws when there is none
     std::string getName(int type, int id) const;          // "" for an unnamed object
 
