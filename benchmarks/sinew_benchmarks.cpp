@@ -5,7 +5,8 @@
 // depend on the machine; on bare ball-joint trees also a hand-written articulated-body algorithm
 // (ForwardDynamics/aba/<model>, the floor); and what the wires cost on the sinew side, the dense wire Jacobian
 // (WireJacobian/<model>), the sparse J^T the tension problems take (WireJacobianSparse/<model>) or the
-// generalized forces of all tensions without forming J (WireForces/<model>).
+// generalized forces of all tensions without forming J (WireForces/<model>). Where libmujoco is installed,
+// MuJoCo's mj_forward on the same model written as MJCF (ForwardDynamics/mujoco/<model>).
 //
 // Every benchmark is registered once per row of the model table (benchmark_models.hpp); the model sizes go
 // into each result's counters and into the run's context, so a JSON file says what was measured.
@@ -24,12 +25,17 @@
 #include "reference_aba.hpp"
 #include "sinew/core/assembly_schedule.hpp"
 #include "sinew/core/data.hpp"
+#include "sinew/core/error.hpp"
 #include "sinew/core/forward_dynamics.hpp"
 #include "sinew/core/kinematics.hpp"
 #include "sinew/core/model.hpp"
 #include "sinew/core/virtual_link_equilibrium.hpp"
 #include "sinew/core/wire_jacobian.hpp"
 #include "sinew/core/wire_path.hpp"
+#include "sinew/io/mjcf_model_writer.hpp"
+#ifdef SINEW_HAVE_MUJOCO
+#include "mujoco_peer.hpp"
+#endif
 
 namespace sinew_benchmarks {
 namespace {
@@ -179,6 +185,53 @@ void benchmarkFusedSimbodyForwardDynamics(benchmark::State& state, ModelFixture*
     timeSimbodyForwardDynamics(state, fixture->getFusedSimbodyModel().getSystem(), fixture->getFusedSimbodyState());
 }
 
+#ifdef SINEW_HAVE_MUJOCO
+// MuJoCo's peer (mujoco_peer.hpp). Its model differs from sinew's where the writer's notes say: a tendon's
+// spring also pushes when shorter than its rest length, where sinew's wire goes slack, and connects are soft
+// constraints. So its udot is held to Simbody's only where neither applies (no loops, no slack wire); elsewhere
+// the difference is the counter udot_rel_diff, and the geometry (tendon lengths against sinew's wire
+// lengths) is what is checked.
+void benchmarkMujocoForwardDynamics(benchmark::State& state, ModelFixture* fixture) {
+    fixture->setCounters(state);
+    if (!prepareAgreedState(state, fixture)) return;
+    const sinew::Model& model = fixture->getModel();
+    std::unique_ptr<MujocoPeer> loaded;
+    try {
+        loaded = std::make_unique<MujocoPeer>(model, fixture->getQ(), fixture->getU(), fixture->getTau());
+    } catch (const std::runtime_error& error) {
+        // MuJoCo's XML parser (tinyxml2) refuses bodies nested deeper than about 100: the long chains.
+        state.SkipWithError(error.what());
+        return;
+    }
+    MujocoPeer& peer = *loaded;
+    peer.evaluate();
+    sinew::Data data(model);
+    sinew::calcPositionKinematics(model, data, fixture->getQ());
+    sinew::calcVelocityKinematics(model, data, fixture->getU());
+    sinew::calcWirePaths(model, data);
+    sinew::calcWireSpeeds(model, data);
+    Eigen::VectorXd tensions(model.getNumWires());
+    sinew::calcWireTensions(model, data, 0.0, tensions);
+    const int slackWires = static_cast<int>((tensions.array() <= 0).count());
+    const double udotDifference = fixture->calcUdotDifferenceFromSimbody(peer.getUdot());
+    state.counters["slack_wires"] = slackWires;
+    state.counters["constraint_rows"] = peer.getNumConstraintRows();
+    state.counters["udot_rel_diff"] = udotDifference;
+    if (!(peer.calcTendonLengthDifference(data.wireLength) <= 1e-9)) {
+        state.SkipWithError("MuJoCo's tendon lengths differ from sinew's wire lengths at the benchmark state");
+        return;
+    }
+    if (model.getNumLoops() == 0 && slackWires == 0 && !(udotDifference <= kUdotTolerance)) {
+        state.SkipWithError("MuJoCo's udot differs from Simbody's on a model where their dynamics are the same");
+        return;
+    }
+    for (auto _ : state) {
+        peer.evaluate();
+        benchmark::ClobberMemory();
+    }
+}
+#endif
+
 // The part both wire benchmarks start from: link poses and wire paths at q.
 void calcWireGeometry(const sinew::Model& model, sinew::Data& data, const Eigen::VectorXd& q) {
     sinew::calcPositionKinematics(model, data, q);
@@ -236,7 +289,8 @@ enum class Scope {
     All,
     ModelsWithWires,   // a peer that differs from another only in how it computes the wires
     WireBenchmarkModels,  // ModelSpec::wireBenchmarks
-    BareBallTrees         // no loops, no wires, ball joints under a ball or free root: the reference ABA's
+    BareBallTrees,        // no loops, no wires, ball joints under a ball or free root: the reference ABA's
+    MjcfWritable          // models the MJCF writer accepts (no virtual links, custom joints, wrapping...)
 };
 
 struct BenchmarkKind {
@@ -251,6 +305,9 @@ constexpr BenchmarkKind kBenchmarkKinds[] = {
     {"ForwardDynamics/simbody/", benchmarkSimbodyForwardDynamics, Scope::All},
     {"ForwardDynamics/simbody_fused/", benchmarkFusedSimbodyForwardDynamics, Scope::ModelsWithWires},
     {"ForwardDynamics/aba/", benchmarkReferenceAba, Scope::BareBallTrees},
+#ifdef SINEW_HAVE_MUJOCO
+    {"ForwardDynamics/mujoco/", benchmarkMujocoForwardDynamics, Scope::MjcfWritable},
+#endif
     {"WireJacobian/", benchmarkWireJacobian, Scope::WireBenchmarkModels},
     {"WireJacobianSparse/", benchmarkSparseWireJacobian, Scope::WireBenchmarkModels},
     {"WireForces/", benchmarkWireForces, Scope::WireBenchmarkModels},
@@ -270,6 +327,13 @@ bool runsOn(const BenchmarkKind& kind, const ModelSpec& spec, const ModelFixture
                                             (joint.type == sinew::JointType::Free && joint.parent == sinew::kGround));
             return ballJoints && model.getNumLoops() == 0 && model.getNumWires() == 0;
         }
+        case Scope::MjcfWritable:
+            try {
+                sinew::writeMjcfText(fixture.getModel());
+                return true;
+            } catch (const sinew::Error&) {
+                return false;
+            }
     }
     return true;
 }
