@@ -8,6 +8,7 @@ namespace sinew::cli {
 int runInfo(const std::vector<std::string>& args);
 int runSimulate(const std::vector<std::string>& args);
 int runImport(const std::vector<std::string>& args);
+int runExport(const std::vector<std::string>& args);
 int runInverseDynamicsCommand(const std::vector<std::string>& args);
 int runInverseKinematicsCommand(const std::vector<std::string>& args);
 int runRunTool(const std::vector<std::string>& args);

@@ -19,6 +19,7 @@ const char* kUsage =
     "                                  writes .sto files of coordinates, speeds, wire tensions and energy\n"
     "  import MODEL -o MODEL.yaml      converts an OpenSim 4 (.osim) or MuJoCo MJCF (.xml) model,\n"
     "                                  listing what it leaves out\n"
+    "  export MODEL -o MODEL.xml       writes the model as MuJoCo MJCF, listing how MuJoCo's model differs\n"
     "  inverse-dynamics MODEL MOTION [--external-loads X.xml] [--lowpass HZ] -o OUT.sto\n"
     "                                  generalized forces per frame, processed as OpenSim's ID tool\n"
     "  ik MODEL CAPTURE.trc [--setup IK_SETUP.xml] -o OUT.mot\n"
@@ -51,6 +52,7 @@ int main(int argc, char** argv) {
         if (command == "info") return sinew::cli::runInfo(args);
         if (command == "simulate") return sinew::cli::runSimulate(args);
         if (command == "import") return sinew::cli::runImport(args);
+        if (command == "export") return sinew::cli::runExport(args);
         if (command == "inverse-dynamics") return sinew::cli::runInverseDynamicsCommand(args);
         if (command == "ik") return sinew::cli::runInverseKinematicsCommand(args);
         if (command == "run-tool") return sinew::cli::runRunTool(args);

@@ -40,9 +40,9 @@ void checkWritable(const Model& model) {
             throw Error(where + " has a custom joint; MJCF's joints are free, ball, hinge and slide, one body each");
         if (joint.type == JointType::Free && joint.parent != kGround)
             throw Error(where + " has a free joint below the root; MuJoCo allows free joints only on the world's children");
-        if (!(model.getLink(i).mass > 0))
+        if (joint.type != JointType::Weld && !(model.getLink(i).mass > 0))
             throw Error(where + (model.getLink(i).isVirtual ? " is a virtual link" : " has no mass") +
-                        "; MuJoCo needs mass on every moving body");
+                        "; MuJoCo needs mass on every body a joint moves");
     }
     if (!model.getCouplers().empty())
         throw Error("cannot write MJCF: coupler '" + model.getCouplers().front().name + "' (coordinate couplers are not written)");
