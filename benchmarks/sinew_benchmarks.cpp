@@ -16,8 +16,10 @@
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "support/allocation_counter.hpp"
@@ -73,7 +75,8 @@ void countAllocations(benchmark::State& state, Evaluate&& evaluate) {
 // and tensions, the wires' forces on the links, and the assembly-disassembly forward dynamics. The buffers
 // (Data, the schedule and its ForwardDynamicsData) are built once, outside the timing loop. One thread, as
 // Simbody runs.
-void timeSinewForwardDynamics(benchmark::State& state, ModelFixture* fixture, sinew::AssemblySchedule::Kind kind) {
+void timeSinewForwardDynamics(benchmark::State& state, ModelFixture* fixture, sinew::AssemblySchedule::Kind kind,
+                              int threads = 1) {
     fixture->setCounters(state);
     if (!prepareAgreedState(state, fixture)) return;
     const sinew::Model& model = fixture->getModel();
@@ -94,7 +97,7 @@ void timeSinewForwardDynamics(benchmark::State& state, ModelFixture* fixture, si
         sinew::calcVirtualLinkEquilibrium(model, data, 0.0, equilibrium);
         sinew::calcWireTensions(model, data, 0.0, tensions);
         sinew::calcWireLinkForces(model, data, tensions);
-        sinew::calcForwardDynamics(model, schedule, data, tau, data.F_G, fd, /*threads=*/1);
+        sinew::calcForwardDynamics(model, schedule, data, tau, data.F_G, fd, threads);
     };
     countAllocations(state, evaluate);
     // This schedule's own answer, checked as prepareAgreedState checked the default one's.
@@ -112,6 +115,7 @@ void timeSinewForwardDynamics(benchmark::State& state, ModelFixture* fixture, si
     // The handles of the largest subassembly: an operation costs their square, so loops that stay open
     // across much of the tree show here.
     state.counters["max_handles"] = schedule.getMaxHandles();
+    state.counters["threads"] = threads;
 }
 
 // The default schedule, Automatic: Serial (tips to root) unless Balanced does clearly less work.
@@ -123,6 +127,13 @@ void benchmarkSinewForwardDynamics(benchmark::State& state, ModelFixture* fixtur
 // closes loops sooner where the Serial schedule carries many open loops up a long chain.
 void benchmarkSinewBalancedForwardDynamics(benchmark::State& state, ModelFixture* fixture) {
     timeSinewForwardDynamics(state, fixture, sinew::AssemblySchedule::Kind::Balanced);
+}
+
+// The Balanced schedule with each level's operations shared between the machine's cores (at least 2): the
+// O(log N) form of the paper. Timed in wall-clock time (registered with UseRealTime).
+void benchmarkSinewParallelForwardDynamics(benchmark::State& state, ModelFixture* fixture) {
+    timeSinewForwardDynamics(state, fixture, sinew::AssemblySchedule::Kind::Balanced,
+                             std::max(2, static_cast<int>(std::thread::hardware_concurrency())));
 }
 
 // Simbody's peer: writing q invalidates the Position stage and all above it, as an integrator step does,
@@ -297,11 +308,13 @@ struct BenchmarkKind {
     const char* prefix;  // the result is named prefix + model name
     void (*run)(benchmark::State&, ModelFixture*);
     Scope scope;
+    bool wallClock = false;  // several threads: wall-clock time, not the main thread's CPU time
 };
 
 constexpr BenchmarkKind kBenchmarkKinds[] = {
     {"ForwardDynamics/sinew/", benchmarkSinewForwardDynamics, Scope::All},
     {"ForwardDynamics/sinew_balanced/", benchmarkSinewBalancedForwardDynamics, Scope::All},
+    {"ForwardDynamics/sinew_parallel/", benchmarkSinewParallelForwardDynamics, Scope::All, true},
     {"ForwardDynamics/simbody/", benchmarkSimbodyForwardDynamics, Scope::All},
     {"ForwardDynamics/simbody_fused/", benchmarkFusedSimbodyForwardDynamics, Scope::ModelsWithWires},
     {"ForwardDynamics/aba/", benchmarkReferenceAba, Scope::BareBallTrees},
@@ -355,8 +368,10 @@ int main(int argc, char** argv) {
                                     "family=" + spec.family + " variant=" + spec.variant + " " + fixture->describe());
         for (const BenchmarkKind& kind : kBenchmarkKinds) {
             if (!runsOn(kind, spec, *fixture)) continue;
-            benchmark::RegisterBenchmark((kind.prefix + spec.name).c_str(), kind.run, fixture)
-                ->Unit(benchmark::kMicrosecond);
+            benchmark::internal::Benchmark* registered =
+                benchmark::RegisterBenchmark((kind.prefix + spec.name).c_str(), kind.run, fixture)
+                    ->Unit(benchmark::kMicrosecond);
+            if (kind.wallClock) registered->UseRealTime();
         }
     }
 

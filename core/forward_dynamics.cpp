@@ -782,7 +782,7 @@ void runEvaluation(const Evaluation& e, int threads) {
         // before it is done.
 #pragma omp parallel num_threads(threads)
         runStages(e, [](int begin, int end, const auto& f) {
-#pragma omp for schedule(dynamic, 1)
+#pragma omp for schedule(static)
             for (int i = begin; i < end; ++i) f(i);
         });
     }
