@@ -52,7 +52,9 @@ def read_results(path):
             if run.get("aggregate_name") == "cv" and run["cpu_time"] > NOISY_CV:
                 noisy.append((name, run["cpu_time"]))
             continue
-        samples[name].append(run["cpu_time"] * TO_US[run["time_unit"]])
+        # Benchmarks registered with UseRealTime (several threads) are named .../real_time: their wall time.
+        time = run["real_time"] if name.endswith("/real_time") else run["cpu_time"]
+        samples[name].append(time * TO_US[run["time_unit"]])
         counters.setdefault(name, run)
     return {name: (min(values), counters[name]) for name, values in samples.items()}, \
         document.get("context", {}), noisy
@@ -162,6 +164,22 @@ def main():
               "take, or the generalized forces -J^T f (target: sparse <= 2x forces)")
         print_table(["model", "links", "dof", "wires", "wire points", "J nonzeros", "WireJacobian us",
                      "WireJacobianSparse us", "WireForces us", "sparse/forces"], wire_rows, args.markdown)
+
+    # The Balanced schedule on one thread against the same on every core (wall-clock).
+    parallel_rows, speedups = [], []
+    for model in models:
+        serial, parallel = results.get(f"ForwardDynamics/sinew_balanced/{model}"), \
+            results.get(f"ForwardDynamics/sinew_parallel/{model}/real_time")
+        if serial and parallel:
+            speedups.append((serial[0] / parallel[0], model))
+            parallel_rows.append([model, str(int(parallel[1].get("links", 0))), str(int(parallel[1].get("threads", 0))),
+                                  fmt(serial[0]), fmt(parallel[0]), fmt(serial[0] / parallel[0], 2)])
+    if parallel_rows:
+        print("The parallel schedule: Balanced on one thread (CPU time) and on every core (wall-clock), us")
+        print_table(["model", "links", "threads", "balanced us", "parallel us", "speed-up"], parallel_rows, args.markdown)
+        best = max(speedups)
+        print(f"parallel schedule: best speed-up {best[0]:.2f} ({best[1]}); faster than one thread on "
+              f"{sum(1 for x, _ in speedups if x > 1)} of {len(speedups)} models")
 
     # Series per (variant, family, engine): [(links, time)], and the slopes.
     series = defaultdict(list)
