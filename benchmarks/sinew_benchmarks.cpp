@@ -342,7 +342,7 @@ bool runsOn(const BenchmarkKind& kind, const ModelSpec& spec, const ModelFixture
         }
         case Scope::MjcfWritable:
             try {
-                sinew::writeMjcfText(fixture.getModel());
+                sinew::requireMjcfWritable(fixture.getModel());
                 return true;
             } catch (const sinew::Error&) {
                 return false;

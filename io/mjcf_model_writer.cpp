@@ -32,7 +32,9 @@ Eigen::Vector3d calcJointTranslation(const Joint& joint, const Eigen::VectorXd& 
 // A point or direction of link B's frame in its MuJoCo body's frame, which is B's joint frame M.
 Eigen::Vector3d toBodyFrame(const Joint& joint, const Eigen::Vector3d& p_B) { return joint.R_BM.transpose() * (p_B - joint.p_BM); }
 
-void checkWritable(const Model& model) {
+}  // namespace
+
+void requireMjcfWritable(const Model& model) {
     for (int i = 0; i < model.getNumLinks(); ++i) {
         const Joint& joint = model.getJoint(i);
         const std::string where = "cannot write MJCF: link '" + model.getLink(i).name + "'";
@@ -51,6 +53,8 @@ void checkWritable(const Model& model) {
             throw Error("cannot write MJCF: wire '" + wire.name +
                         "' wraps or has conditional or moving points; only polyline wires are written");
 }
+
+namespace {
 
 std::string formatNumber(double x) {
     std::ostringstream out;
@@ -263,7 +267,7 @@ Eigen::VectorXd mapVelocity(const Model& model, const Eigen::VectorXd& q, const 
 }  // namespace
 
 MjcfExport writeMjcfText(const Model& model) {
-    checkWritable(model);
+    requireMjcfWritable(model);
     std::ostringstream out;
     out << "<!-- Written by sinew from model '" << escapeXml(model.getName())
         << "'; bodies at the model's default pose (MuJoCo's qpos0), each in its link's joint frame. -->\n";
@@ -288,7 +292,7 @@ std::vector<std::string> writeMjcfModel(const Model& model, const std::string& p
 Eigen::VectorXd toMujocoQpos(const Model& model, const Eigen::VectorXd& q) {
     if (q.size() != model.getNumQ())
         throw Error("MuJoCo qpos: expected q of " + std::to_string(model.getNumQ()) + " entries, got " + std::to_string(q.size()));
-    checkWritable(model);
+    requireMjcfWritable(model);
     Eigen::VectorXd qpos(model.getNumQ());
     const Eigen::VectorXd& q0 = model.getDefaultQ();
     Eigen::Index s = 0;  // the joint's first entry of MuJoCo's qpos

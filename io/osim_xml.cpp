@@ -1,12 +1,17 @@
 #include "osim_xml.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <optional>
+#include <string_view>
 #include <filesystem>
 #include <map>
 #include <sstream>
 
+#include "number_text.hpp"
 #include "sinew/core/error.hpp"
 
 namespace sinew {
@@ -133,23 +138,25 @@ constexpr double kMaxOsimMagnitude = 1e9;
 
 std::vector<double> readNumbers(const XmlDocument& doc, const Element& element) {
     // SimTK writes vectors as "~[1,2,3]" and some files wrap them in parentheses; both read as plain lists.
-    std::string text = textOf(element);
-    std::replace_if(text.begin(), text.end(), [](char c) { return std::string(",()[]~").find(c) != std::string::npos; },
-                    ' ');
-    std::istringstream tokens(text);
+    const std::string text = textOf(element);
+    auto separates = [](char c) { return std::isspace(static_cast<unsigned char>(c)) || std::strchr(",()[]~", c); };
+    const std::string name = element.Name();
     std::vector<double> numbers;
-    std::string token;
-    while (tokens >> token) {
-        char* end = nullptr;
-        const double value = std::strtod(token.c_str(), &end);
-        if (end != token.c_str() + token.size()) doc.fail(element, "'" + token + "' is not a number");
+    for (std::size_t i = 0; i < text.size();) {
+        while (i < text.size() && separates(text[i])) ++i;
+        const std::size_t start = i;
+        while (i < text.size() && !separates(text[i])) ++i;
+        if (i == start) break;
+        const std::string_view token(text.data() + start, i - start);
+        const std::optional<double> parsed = parseNumber(token);
+        if (!parsed) doc.fail(element, "'" + std::string(token) + "' is not a number");
+        const double value = *parsed;
         if (std::isnan(value)) doc.fail(element, "NaN is not a value");
         // OpenSim writes an actuator's absent control limit as Inf; nowhere else does sinew carry one.
-        const std::string name = element.Name();
         if (std::isinf(value) && name != "min_control" && name != "max_control")
-            doc.fail(element, "<" + name + "> '" + token + "' is not a finite number");
+            doc.fail(element, "<" + name + "> '" + std::string(token) + "' is not a finite number");
         if (std::isfinite(value) && std::abs(value) > kMaxOsimMagnitude)
-            doc.fail(element, "<" + name + "> " + token + " is beyond the magnitude 1e9 sinew bounds a model's "
+            doc.fail(element, "<" + name + "> " + std::string(token) + " is beyond the magnitude 1e9 sinew bounds a model's "
                               "numbers to (docs/model-format.md, \"Bounds\")");
         numbers.push_back(value);
     }

@@ -1,6 +1,9 @@
 #include "sinew/io/storage_file.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -10,7 +13,9 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string_view>
 
+#include "number_text.hpp"
 #include "sinew/core/error.hpp"
 
 namespace sinew {
@@ -29,25 +34,40 @@ std::string trim(const std::string& text) {
     return begin == std::string::npos ? std::string() : right.substr(begin);
 }
 
-// The cells of a header or data line: tab-separated when the line has a tab (OpenSim's own files; a cell
-// may then be empty), else separated by runs of blanks (hand-written .mot files). Empty cells at the end
-// of the line (trailing tabs) are dropped; a tab-separated line is then padded with empty cells to
-// `minCells` (a line's trailing tabs are trimmed before it gets here, so a short row may be empty cells).
-std::vector<std::string> splitCells(const std::string& line, std::size_t minCells = 0) {
-    std::vector<std::string> cells;
-    if (line.find('\t') != std::string::npos) {
-        std::istringstream fields(line);
-        std::string cell;
-        while (std::getline(fields, cell, '\t')) cells.push_back(trim(cell));
+bool isSpace(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
+
+std::string_view trimView(std::string_view text) {
+    const std::size_t end = text.find_last_not_of(kBlanks);
+    if (end == std::string_view::npos) return {};
+    return text.substr(0, end + 1).substr(text.find_first_not_of(kBlanks));
+}
+
+// The cells of a header or data line, as views into it: tab-separated when the line has a tab (OpenSim's own
+// files; a cell may then be empty), else separated by runs of white space (hand-written .mot files). Empty
+// cells at the end of the line (trailing tabs) are dropped; a tab-separated line is then padded with empty
+// cells to `minCells` (a line's trailing tabs are trimmed before it gets here, so a short row may be empty
+// cells). `cells` is reused from row to row.
+void splitCells(std::string_view line, std::vector<std::string_view>& cells, std::size_t minCells = 0) {
+    cells.clear();
+    if (line.find('\t') != std::string_view::npos) {
+        for (std::size_t start = 0;;) {
+            const std::size_t tab = line.find('\t', start);
+            cells.push_back(trimView(line.substr(start, tab == std::string_view::npos ? std::string_view::npos : tab - start)));
+            if (tab == std::string_view::npos || tab + 1 == line.size()) break;
+            start = tab + 1;
+        }
         while (!cells.empty() && cells.back().empty()) cells.pop_back();
         if (cells.size() < minCells) cells.resize(minCells);
     } else {
-        std::istringstream fields(line);
-        std::string cell;
-        while (fields >> cell) cells.push_back(cell);
+        for (std::size_t i = 0; i < line.size();) {
+            while (i < line.size() && isSpace(line[i])) ++i;
+            const std::size_t start = i;
+            while (i < line.size() && !isSpace(line[i])) ++i;
+            if (i > start) cells.push_back(line.substr(start, i - start));
+        }
     }
-    return cells;
 }
+
 
 // Reads one OpenSim storage file, turning every problem into an Error at "file:line".
 class StorageReader {
@@ -134,7 +154,9 @@ private:
         do {
             if (!nextLine(line)) fail(lineNumber_ + 1, "missing column labels after 'endheader'");
         } while (trim(line).empty());
-        std::vector<std::string> labels = splitCells(line);
+        std::vector<std::string_view> cells;
+        splitCells(line, cells);
+        const std::vector<std::string> labels(cells.begin(), cells.end());
         // A line of other white space (a form feed, a vertical tab) is not blank to trim() but has no cells.
         if (labels.empty()) fail(lineNumber_, "missing column labels after 'endheader' (a line of white space only)");
         if (labels.front() != "time") fail(lineNumber_, "first column must be 'time', got '" + labels.front() + "'");
@@ -157,35 +179,33 @@ private:
 
     void readRows() {
         std::string line;
+        std::vector<std::string_view> cells;
+        std::vector<double> values;
         while (nextLine(line)) {
-            if (trim(line).empty()) continue;
+            if (trimView(line).empty()) continue;
             const std::size_t expected = table_.columns.size() + 1;
             const bool allowNonFinite = nonFinite_ == NonFinite::Allow;
-            const std::vector<std::string> cells = splitCells(line, allowNonFinite ? expected : 0);
-            std::vector<double> values;
-            values.reserve(cells.size());
+            splitCells(line, cells, allowNonFinite ? expected : 0);
+            values.clear();
             for (std::size_t c = 0; c < cells.size(); ++c) {
-                const std::string& cell = cells[c];
+                const std::string_view cell = cells[c];
                 if (cell.empty() && allowNonFinite && c > 0) {
                     values.push_back(std::numeric_limits<double>::quiet_NaN());
                     continue;
                 }
                 if (cell.empty()) fail(lineNumber_, "empty cell in " + describeColumn(c));
-                // strtod, unlike stod, accepts the subnormal numbers the writer can produce.
-                char* end = nullptr;
-                const double value = std::strtod(cell.c_str(), &end);
-                if (end != cell.c_str() + cell.size())
-                    fail(lineNumber_, "'" + cell + "' is not a number (" + describeColumn(c) + ")");
-                if (!std::isfinite(value) && (!allowNonFinite || c == 0))
-                    fail(lineNumber_, "'" + cell + "' is not a finite number (" + describeColumn(c) + ")");
-                values.push_back(value);
+                const std::optional<double> value = parseNumber(cell);
+                if (!value) fail(lineNumber_, "'" + std::string(cell) + "' is not a number (" + describeColumn(c) + ")");
+                if (!std::isfinite(*value) && (!allowNonFinite || c == 0))
+                    fail(lineNumber_, "'" + std::string(cell) + "' is not a finite number (" + describeColumn(c) + ")");
+                values.push_back(*value);
             }
             if (values.size() != expected)
                 fail(lineNumber_, std::to_string(values.size()) + " values, expected " + std::to_string(expected) +
                                       (values.size() < expected ? "; the first missing is " : "; the first extra is ") +
                                       describeColumn(std::min(values.size(), expected)));
             if (!table_.times.empty() && !(values.front() > table_.times.back()))
-                fail(lineNumber_, "time " + cells.front() + " does not increase (the row before is at " +
+                fail(lineNumber_, "time " + std::string(cells.front()) + " does not increase (the row before is at " +
                                       std::to_string(table_.times.back()) + ")");
             table_.rowLines.push_back(lineNumber_);
             table_.times.push_back(values.front());
@@ -199,6 +219,26 @@ void checkHeaderText(const std::string& text, const std::string& what, const std
     if (text.find_first_of("\n\r") != std::string::npos || trimRight(text) != text || trim(text) == "endheader")
         throw Error(path + ": the " + what + " '" + text +
                     "' cannot be written (it holds a line break, ends in blanks or is 'endheader')");
+}
+
+}  // namespace
+
+namespace {
+
+// The shortest text that reads back as exactly `value` (decimals < 0), or `decimals` fixed decimals.
+// std::to_chars does either many times faster than a stream.
+void writeNumber(std::ostream& out, double value, int decimals) {
+    std::array<char, 512> buffer;  // a finite double in fixed notation has at most 309 integer digits
+    const auto [end, error] = decimals < 0 ? std::to_chars(buffer.data(), buffer.data() + buffer.size(), value)
+                                           : std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
+                                                           std::chars_format::fixed, decimals);
+    if (error == std::errc()) {
+        out.write(buffer.data(), end - buffer.data());
+    } else {
+        const std::ios::fmtflags flags = out.flags();
+        out << std::fixed << std::setprecision(decimals) << value;
+        out.flags(flags);
+    }
 }
 
 }  // namespace
@@ -238,12 +278,14 @@ void writeStorageFile(const StorageTable& table, OutputFileSet& set, const std::
     for (const std::string& line : table.header) out << line << '\n';
     out << "endheader\ntime";
     for (const std::string& column : table.columns) out << '\t' << column;
-    out << '\n' << std::setprecision(17);
+    out << '\n';
     for (std::size_t i = 0; i < table.rows.size(); ++i) {
-        out << table.times[i];
-        if (table.decimals >= 0) out << std::fixed << std::setprecision(table.decimals);
-        for (double value : table.rows[i]) out << '\t' << value;
-        out << std::defaultfloat << std::setprecision(17) << '\n';
+        writeNumber(out, table.times[i], -1);
+        for (double value : table.rows[i]) {
+            out << '\t';
+            writeNumber(out, value, table.decimals);
+        }
+        out << '\n';
     }
 }
 

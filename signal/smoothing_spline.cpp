@@ -162,13 +162,15 @@ public:
 
     NaturalSplineFitter(int degree, const Eigen::Ref<const Eigen::VectorXd>& x,
                         const Eigen::Ref<const Eigen::VectorXd>& y, const Eigen::Ref<const Eigen::VectorXd>& weights)
-        : NaturalSplineFitter(degree, x, weights) {
+        : NaturalSplineFitter(degree, x, weights, true) {
         setValues(y);
     }
 
     // The sites' basis, collocation and roughness alone: what every series sampled at these sites shares,
-    // and the costly part of a fit (setValues then takes O(n) per series).
-    NaturalSplineFitter(int degree, const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& weights)
+    // and the costly part of a fit (setValues then takes O(n) per series). Without `roughness` only the
+    // interpolant (p = 0) can be solved for, and the roughness integrals, most of the set-up, are skipped.
+    NaturalSplineFitter(int degree, const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::Ref<const Eigen::VectorXd>& weights,
+                        bool roughness)
         : x_(x) {
         if (degree < 1 || degree > 2 * SmoothingSpline::kMaxHalfOrder - 1 || degree % 2 == 0)
             throw Error("smoothing spline: degree " + std::to_string(degree) + "; expected 1, 3, 5 or 7");
@@ -206,13 +208,19 @@ public:
         B.setFromTriplets(collocation.begin(), collocation.end());
         N_ = B * Z;
         const SparseMatrix H = SparseMatrix(N_.transpose() * w_.asDiagonal() * N_);
-        const SparseMatrix P = SparseMatrix(Z.transpose() * buildRoughness(order, count) * Z);
+        const SparseMatrix P = roughness ? SparseMatrix(Z.transpose() * buildRoughness(order, count) * Z) : SparseMatrix(n_, n_);
         int b = 0;
         for (const SparseMatrix* a : {&H, &P})
             for (int j = 0; j < a->outerSize(); ++j)
                 for (SparseMatrix::InnerIterator it(*a, j); it; ++it) b = std::max(b, static_cast<int>(it.row()) - j);
         H_ = SymmetricBand::fromSparse(H, b);
         P_ = SymmetricBand::fromSparse(P, b);
+        roughness_ = roughness;
+        // Interpolation only: every series shares H's factors.
+        if (!roughness) {
+            interpolationFactors_ = H_;
+            interpolationSolvable_ = factorLDLT(interpolationFactors_);
+        }
         Z_ = Z;
     }
 
@@ -229,10 +237,19 @@ public:
     double naturalScale() const { return H_.band.row(0).sum() / P_.band.row(0).sum(); }
 
     Trial solve(double p) const {
-        SymmetricBand g{H_.b, H_.band + p * P_.band};
+        if (p != 0 && !roughness_) throw Error("smoothing spline: a fit set up for interpolation only was asked to smooth");
         Trial trial;
         trial.p = p;
-        if (!factorLDLT(g)) return trial;
+        SymmetricBand smoothing;
+        const SymmetricBand* factors = &interpolationFactors_;
+        if (roughness_) {
+            smoothing = {H_.b, H_.band + p * P_.band};
+            if (!factorLDLT(smoothing)) return trial;
+            factors = &smoothing;
+        } else if (!interpolationSolvable_) {
+            return trial;
+        }
+        const SymmetricBand& g = *factors;
         trial.solved = true;
         trial.c = solveLDLT(g, rhs_);
         const Eigen::VectorXd residual = y_ - N_ * trial.c;
@@ -314,6 +331,9 @@ private:
     }
 
     int m_ = 0, n_ = 0;
+    bool roughness_ = true;
+    bool interpolationSolvable_ = false;
+    SymmetricBand interpolationFactors_;  // H = L D L^T, without roughness
     Eigen::VectorXd x_, y_, w_, knots_, rhs_;
     SparseMatrix Z_, N_;
     SymmetricBand H_, P_;
@@ -408,7 +428,7 @@ std::vector<SmoothingSpline> SmoothingSpline::interpolateColumns(int degree, con
     if (values.rows() != x.size())
         throw Error("smoothing spline: " + std::to_string(values.rows()) + " rows of values for " +
                     std::to_string(x.size()) + " sites");
-    NaturalSplineFitter fitter(degree, x, Eigen::VectorXd());
+    NaturalSplineFitter fitter(degree, x, Eigen::VectorXd(), /*roughness=*/false);
     std::vector<SmoothingSpline> splines;
     splines.reserve(static_cast<std::size_t>(values.cols()));
     for (Eigen::Index j = 0; j < values.cols(); ++j) {

@@ -1,6 +1,8 @@
 #include "sinew/tools/measured_loads.hpp"
 
 #include <algorithm>
+#include <iterator>
+#include <utility>
 
 #include "sinew/core/error.hpp"
 #include "sinew/core/kinematics.hpp"
@@ -31,30 +33,37 @@ MeasuredLoads::MeasuredLoads(const Model& model, const ExternalLoads& loads) {
     const Eigen::Map<const Eigen::VectorXd> times(table.times.data(), static_cast<Eigen::Index>(table.times.size()));
     // OpenSim's ExternalForce: GCVSpline(3, ...) with its default error variance 0, i.e. interpolation.
     const int degree = table.times.size() >= 4 ? 3 : 1;
-    auto makeChannel = [&](const std::array<int, 3>& columns) {
-        Channel channel;
-        if (columns[0] < 0) return channel;
+    // Every channel's columns are interpolated together: the sites, and so the spline set-up, are shared.
+    std::vector<int> columns;
+    std::vector<std::pair<Channel*, std::size_t>> channels;  // each present channel and its first column
+    auto addChannel = [&](const std::array<int, 3>& channelColumns, Channel& channel) {
+        if (channelColumns[0] < 0) return;
         // Forces (N), torques (N m) and points (m) of a measured load stay far below this; beyond it the
         // generalized forces overflow or drown every other load.
-        checkStorageMagnitudes(table, {columns.begin(), columns.end()}, 1e7, "an external load (N, N m or m)");
-        Eigen::MatrixXd values(times.size(), 3);
-        for (int axis = 0; axis < 3; ++axis)
-            for (Eigen::Index r = 0; r < times.size(); ++r)
-                values(r, axis) = table.rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(columns[static_cast<std::size_t>(axis)])];
-        channel.splines = SmoothingSpline::interpolateColumns(degree, times, values);
-        return channel;
+        checkStorageMagnitudes(table, {channelColumns.begin(), channelColumns.end()}, 1e7, "an external load (N, N m or m)");
+        channels.emplace_back(&channel, columns.size());
+        columns.insert(columns.end(), channelColumns.begin(), channelColumns.end());
     };
+    loads_.reserve(loads.forces.size());  // the channels are pointed to
     for (const ExternalForce& force : loads.forces) {
         if (!force.appliesForce) continue;
-        Load load;
+        Load& load = loads_.emplace_back();
         load.appliedTo = findBody(model, force.appliedToBody, force, "applied-to");
         load.forceFrame = findBody(model, force.forceExpressedInBody, force, "force-expressed-in");
         load.pointFrame = findBody(model, force.pointExpressedInBody, force, "point-expressed-in");
-        load.force = makeChannel(force.forceColumns);
-        load.point = makeChannel(force.pointColumns);
-        load.torque = makeChannel(force.torqueColumns);
-        loads_.push_back(std::move(load));
+        addChannel(force.forceColumns, load.force);
+        addChannel(force.pointColumns, load.point);
+        addChannel(force.torqueColumns, load.torque);
     }
+    if (columns.empty()) return;
+    Eigen::MatrixXd values(times.size(), static_cast<Eigen::Index>(columns.size()));
+    for (Eigen::Index c = 0; c < values.cols(); ++c)
+        for (Eigen::Index r = 0; r < times.size(); ++r)
+            values(r, c) = table.rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(columns[static_cast<std::size_t>(c)])];
+    std::vector<SmoothingSpline> splines = SmoothingSpline::interpolateColumns(degree, times, values);
+    for (const auto& [channel, first] : channels)
+        channel->splines.assign(std::make_move_iterator(splines.begin() + static_cast<std::ptrdiff_t>(first)),
+                                std::make_move_iterator(splines.begin() + static_cast<std::ptrdiff_t>(first + 3)));
 }
 
 void MeasuredLoads::addLinkForces(const Data& data, double t, std::vector<SpatialVector>& linkForces) const {

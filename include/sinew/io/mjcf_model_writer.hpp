@@ -24,6 +24,8 @@ struct MjcfExport {
     std::vector<std::string> notes;  // how MuJoCo's model differs from sinew's, one line per kind
 };
 
+// Throws the Error writeMjcfText would for a model MJCF cannot say, without writing anything.
+void requireMjcfWritable(const Model& model);
 MjcfExport writeMjcfText(const Model& model);
 // Writes the document to `path` (whole or not at all) and returns the notes.
 std::vector<std::string> writeMjcfModel(const Model& model, const std::string& path);

@@ -25,8 +25,8 @@ struct StorageTable {
     std::string where = {};
     // The file line of each row when read from a file (rows[i] sits on line rowLines[i]); empty otherwise.
     std::vector<int> rowLines = {};
-    // Written with this many digits after the point (fixed), for a file meant to be small; -1: 17
-    // significant digits, which read back bit for bit.
+    // Written with this many digits after the point (fixed), for a file meant to be small; -1: the shortest
+    // text that reads back bit for bit.
     int decimals = -1;
 };
 
