@@ -13,8 +13,10 @@ namespace sinew_benchmarks {
 MujocoPeer::MujocoPeer(const sinew::Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& u,
                        const Eigen::VectorXd& tau)
     : model_(model), q_(q), mujocoModel_(nullptr, mj_deleteModel), mujocoData_(nullptr, mj_deleteData) {
+    // A name of its own: the model's name may hold anything.
+    static int written = 0;
     const std::filesystem::path file = std::filesystem::temp_directory_path() /
-                                       ("sinew_benchmark_" + std::to_string(::getpid()) + "_" + model.getName() + ".xml");
+                                       ("sinew_benchmark_" + std::to_string(::getpid()) + "_" + std::to_string(written++) + ".xml");
     sinew::writeMjcfModel(model, file.string());
     char error[1000] = "";
     mujocoModel_.reset(mj_loadXML(file.string().c_str(), nullptr, error, sizeof error));
