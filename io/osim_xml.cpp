@@ -139,7 +139,7 @@ constexpr double kMaxOsimMagnitude = 1e9;
 std::vector<double> readNumbers(const XmlDocument& doc, const Element& element) {
     // SimTK writes vectors as "~[1,2,3]" and some files wrap them in parentheses; both read as plain lists.
     const std::string text = textOf(element);
-    auto separates = [](char c) { return std::isspace(static_cast<unsigned char>(c)) || std::strchr(",()[]~", c); };
+    auto separates = [](char c) { return std::isspace(static_cast<unsigned char>(c)) || (c != '\0' && std::strchr(",()[]~", c)); };
     const std::string name = element.Name();
     std::vector<double> numbers;
     for (std::size_t i = 0; i < text.size();) {
