@@ -4,7 +4,7 @@
 # (scripts/plot_scaling.py), and plots them (sinew plot -> build/forward_dynamics_scaling_<variant>.png).
 # docs/performance.md has the numbers of the last full run.
 # usage: scripts/bench.sh [google-benchmark args...]   e.g. --benchmark_filter=wholebody
-# Arguments come after the defaults below and override them. A full run takes about 3 minutes on 2 cores.
+# Arguments come after the defaults below and override them. A full run takes about 10 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
