@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 
+#include "number_text.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/io/atomic_file.hpp"
 
@@ -27,10 +28,8 @@ int axisOf(BvhChannel channel) { return static_cast<int>(channel) % 3; }
 bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
 std::optional<double> parseFiniteNumber(const std::string& text) {
-    if (text.empty()) return std::nullopt;
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);  // strtod, unlike stod, takes subnormals
-    if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
+    const std::optional<double> value = parseNumber(text);
+    if (!value || !std::isfinite(*value)) return std::nullopt;
     return value;
 }
 

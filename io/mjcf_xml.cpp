@@ -5,8 +5,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <strings.h>
 
+#include "number_text.hpp"
 #include "sinew/core/error.hpp"
 
 namespace sinew::mjcf {
@@ -134,11 +136,10 @@ int readNumbers(const XmlElement& element, const char* name, double* values, int
         if (read == count)
             failAttribute(element, name, "'" + std::string(text) + "' has more than " + std::to_string(count) +
                                              (count == 1 ? " number" : " numbers"));
-        char* end = nullptr;
-        const double value = std::strtod(token.c_str(), &end);
-        if (end != token.c_str() + token.size()) failAttribute(element, name, "'" + token + "' is not a number");
-        if (!std::isfinite(value)) failAttribute(element, name, "'" + token + "' is not a finite number");
-        values[read++] = value;
+        const std::optional<double> value = parseNumber(token);
+        if (!value) failAttribute(element, name, "'" + token + "' is not a number");
+        if (!std::isfinite(*value)) failAttribute(element, name, "'" + token + "' is not a finite number");
+        values[read++] = *value;
     }
     if (read == 0 || (exact && read < count))
         failAttribute(element, name, "'" + std::string(text) + "': expected " +

@@ -28,19 +28,15 @@ std::string trimRight(const std::string& text) {
     return end == std::string::npos ? std::string() : text.substr(0, end + 1);
 }
 
-std::string trim(const std::string& text) {
-    const std::string right = trimRight(text);
-    const std::size_t begin = right.find_first_not_of(kBlanks);
-    return begin == std::string::npos ? std::string() : right.substr(begin);
-}
-
-bool isSpace(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
-
 std::string_view trimView(std::string_view text) {
     const std::size_t end = text.find_last_not_of(kBlanks);
     if (end == std::string_view::npos) return {};
     return text.substr(0, end + 1).substr(text.find_first_not_of(kBlanks));
 }
+
+std::string trim(const std::string& text) { return std::string(trimView(text)); }
+
+bool isSpace(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
 
 // The cells of a header or data line, as views into it: tab-separated when the line has a tab (OpenSim's own
 // files; a cell may then be empty), else separated by runs of white space (hand-written .mot files). Empty
@@ -67,7 +63,6 @@ void splitCells(std::string_view line, std::vector<std::string_view>& cells, std
         }
     }
 }
-
 
 // Reads one OpenSim storage file, turning every problem into an Error at "file:line".
 class StorageReader {
@@ -220,10 +215,6 @@ void checkHeaderText(const std::string& text, const std::string& what, const std
         throw Error(path + ": the " + what + " '" + text +
                     "' cannot be written (it holds a line break, ends in blanks or is 'endheader')");
 }
-
-}  // namespace
-
-namespace {
 
 // The shortest text that reads back as exactly `value` (decimals < 0), or `decimals` fixed decimals.
 // std::to_chars does either many times faster than a stream.

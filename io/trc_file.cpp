@@ -14,6 +14,7 @@
 #include <optional>
 #include <sstream>
 
+#include "number_text.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/io/atomic_file.hpp"
 
@@ -44,15 +45,6 @@ std::vector<std::string> splitCells(const std::string& line) {
         while (fields >> cell) cells.push_back(cell);
     }
     return cells;
-}
-
-// The whole cell as a number (strtod, unlike stod, takes subnormals), or nothing.
-std::optional<double> parseNumber(const std::string& cell) {
-    if (cell.empty()) return std::nullopt;
-    char* end = nullptr;
-    const double value = std::strtod(cell.c_str(), &end);
-    if (end != cell.c_str() + cell.size()) return std::nullopt;
-    return value;
 }
 
 std::optional<int> parseInteger(const std::string& cell) {
