@@ -13,6 +13,22 @@ Eigen::Quaterniond readQuaternion(const Eigen::VectorXd& q, int start) {
 
 }  // namespace
 
+void calcJointTransform(const Joint& joint, const Eigen::VectorXd& q, Eigen::Matrix3d& R_FM, Eigen::Vector3d& p_FM,
+                        JointMotion& H_FM) {
+    R_FM.setIdentity();
+    p_FM.setZero();
+    switch (joint.type) {
+        case JointType::Free:
+            R_FM = readQuaternion(q, joint.qStart).toRotationMatrix();
+            p_FM = q.segment<3>(joint.qStart + 4);
+            break;
+        case JointType::Ball: R_FM = readQuaternion(q, joint.qStart).toRotationMatrix(); break;
+        case JointType::Pin: R_FM = Eigen::AngleAxisd(q[joint.qStart], Eigen::Vector3d::UnitZ()).toRotationMatrix(); break;
+        case JointType::Weld: break;
+        case JointType::Custom: calcCustomJointTransform(joint, q.data() + joint.qStart, R_FM, p_FM, H_FM); break;
+    }
+}
+
 void calcPositionKinematics(const Model& model, Data& data, const Eigen::VectorXd& q) {
     data.q = q;  // for the wire points that depend on coordinates
     for (int i = 0; i < model.getNumLinks(); ++i) {
@@ -24,18 +40,9 @@ void calcPositionKinematics(const Model& model, Data& data, const Eigen::VectorX
             R_GP = data.R_GB[static_cast<std::size_t>(joint.parent)];
             p_GP = data.p_GB[static_cast<std::size_t>(joint.parent)];
         }
-        Eigen::Matrix3d R_FM = Eigen::Matrix3d::Identity();
-        Eigen::Vector3d p_FM = Eigen::Vector3d::Zero();
-        switch (joint.type) {
-            case JointType::Free:
-                R_FM = readQuaternion(q, joint.qStart).toRotationMatrix();
-                p_FM = q.segment<3>(joint.qStart + 4);
-                break;
-            case JointType::Ball: R_FM = readQuaternion(q, joint.qStart).toRotationMatrix(); break;
-            case JointType::Pin: R_FM = Eigen::AngleAxisd(q[joint.qStart], Eigen::Vector3d::UnitZ()).toRotationMatrix(); break;
-            case JointType::Weld: break;
-            case JointType::Custom: calcCustomJointTransform(joint, q.data() + joint.qStart, R_FM, p_FM, data.H_FM[b]); break;
-        }
+        Eigen::Matrix3d R_FM;
+        Eigen::Vector3d p_FM;
+        calcJointTransform(joint, q, R_FM, p_FM, data.H_FM[b]);
         data.R_GF[b] = R_GP * joint.R_PF;
         data.p_GM[b] = p_GP + R_GP * joint.p_PF + data.R_GF[b] * p_FM;
         data.R_GB[b] = data.R_GF[b] * R_FM * joint.R_BM.transpose();

@@ -7,26 +7,23 @@
 #include <sstream>
 
 #include "sinew/core/error.hpp"
+#include "sinew/core/kinematics.hpp"
 #include "sinew/io/atomic_file.hpp"
 
 namespace sinew {
 namespace {
 
-// sinew's joint rotation R_FM at q (ball, free, pin; identity for a weld).
-Eigen::Matrix3d calcJointRotation(const Joint& joint, const Eigen::VectorXd& q) {
-    switch (joint.type) {
-        case JointType::Free:
-        case JointType::Ball:
-            return Eigen::Quaterniond(q[joint.qStart], q[joint.qStart + 1], q[joint.qStart + 2], q[joint.qStart + 3])
-                .normalized()
-                .toRotationMatrix();
-        case JointType::Pin: return Eigen::AngleAxisd(q[joint.qStart], Eigen::Vector3d::UnitZ()).toRotationMatrix();
-        default: return Eigen::Matrix3d::Identity();
-    }
-}
+// The joint's R_FM and p_FM at q, as sinew's kinematics computes them (custom joints are refused before).
+struct JointTransform {
+    Eigen::Matrix3d R_FM;
+    Eigen::Vector3d p_FM;
+};
 
-Eigen::Vector3d calcJointTranslation(const Joint& joint, const Eigen::VectorXd& q) {
-    return joint.type == JointType::Free ? Eigen::Vector3d(q.segment<3>(joint.qStart + 4)) : Eigen::Vector3d::Zero();
+JointTransform calcTransform(const Joint& joint, const Eigen::VectorXd& q) {
+    JointTransform X;
+    JointMotion unusedH_FM;
+    calcJointTransform(joint, q, X.R_FM, X.p_FM, unusedH_FM);
+    return X;
 }
 
 // A point or direction of link B's frame in its MuJoCo body's frame, which is B's joint frame M.
@@ -138,8 +135,9 @@ private:
             p_PF = toBodyFrame(parentJoint, joint.p_PF);
         }
         const Eigen::VectorXd& q0 = model_.getDefaultQ();
-        const Eigen::Matrix3d R_PM = R_PF * calcJointRotation(joint, q0);
-        const Eigen::Vector3d p_PM = p_PF + R_PF * calcJointTranslation(joint, q0);
+        const JointTransform X_FM = calcTransform(joint, q0);
+        const Eigen::Matrix3d R_PM = R_PF * X_FM.R_FM;
+        const Eigen::Vector3d p_PM = p_PF + R_PF * X_FM.p_FM;
         out_ << indent << "<body name=\"" << escapeXml(body.name) << "\" pos=\"" << formatVector(p_PM) << "\" quat=\""
              << formatQuaternion(R_PM) << "\">\n";
         // Principal axes computed here: MuJoCo's own diagonalisation of a fullinertia costs its accelerations
@@ -247,7 +245,8 @@ Eigen::VectorXd mapVelocity(const Model& model, const Eigen::VectorXd& q, const 
         const Joint& joint = model.getJoint(link);
         const Eigen::Index s = toMujoco ? joint.uStart : dof, r = toMujoco ? dof : joint.uStart;
         dof += joint.nu;
-        const Eigen::Matrix3d R_FM = calcJointRotation(joint, q);
+        const bool rotates = joint.type == JointType::Ball || joint.type == JointType::Free;
+        const Eigen::Matrix3d R_FM = rotates ? calcTransform(joint, q).R_FM : Eigen::Matrix3d::Identity();
         if (joint.type == JointType::Ball) {
             result.segment<3>(r) = (toMujoco ? Eigen::Matrix3d(R_FM.transpose()) : R_FM) * v.segment<3>(s);
         } else if (joint.type == JointType::Free && toMujoco) {
@@ -301,14 +300,15 @@ Eigen::VectorXd toMujocoQpos(const Model& model, const Eigen::VectorXd& q) {
         switch (joint.type) {
             case JointType::Free: {
                 // The world pose of the body frame M.
-                qpos.segment<3>(s) = joint.p_PF + joint.R_PF * calcJointTranslation(joint, q);
-                const Eigen::Quaterniond R(joint.R_PF * calcJointRotation(joint, q));
+                const JointTransform X_FM = calcTransform(joint, q);
+                qpos.segment<3>(s) = joint.p_PF + joint.R_PF * X_FM.p_FM;
+                const Eigen::Quaterniond R(joint.R_PF * X_FM.R_FM);
                 qpos.segment<4>(s + 3) << R.w(), R.x(), R.y(), R.z();
                 break;
             }
             case JointType::Ball: {
                 // Relative to the body's placement at the default pose.
-                const Eigen::Quaterniond R(calcJointRotation(joint, q0).transpose() * calcJointRotation(joint, q));
+                const Eigen::Quaterniond R(calcTransform(joint, q0).R_FM.transpose() * calcTransform(joint, q).R_FM);
                 qpos.segment<4>(s) << R.w(), R.x(), R.y(), R.z();
                 break;
             }

@@ -8,6 +8,11 @@
 
 namespace sinew {
 
+// The joint's transform at q (the model's nq): R_FM and p_FM (M's origin in F, F axes), and for a custom
+// joint its H_FM (left alone for the other types). Quaternions need not be normalised.
+void calcJointTransform(const Joint& joint, const Eigen::VectorXd& q, Eigen::Matrix3d& R_FM, Eigen::Vector3d& p_FM,
+                        JointMotion& H_FM);
+
 // Fills Data::R_GB, p_GB, R_GF, p_GM (and H_FM of custom joints) from q (nq). Quaternions need not be
 // normalised.
 void calcPositionKinematics(const Model& model, Data& data, const Eigen::VectorXd& q);
