@@ -27,6 +27,19 @@ constexpr double kClosedGap = 1e-15;  // m: roundoff on a body's size
 
 bool hasScalarSpeed(const Joint& joint) { return joint.nq == joint.nu; }
 
+// The links whose joints move any of `links` (each of them and its ancestors, ground excepted), in the
+// model's order: the joint motions a Jacobian of points on `links` reads.
+std::vector<int> findJointsMoving(const Model& model, const std::vector<int>& links) {
+    std::vector<char> moves(static_cast<std::size_t>(model.getNumLinks()), 0);
+    for (int link : links)
+        for (int i = link; i != kGround && !moves[static_cast<std::size_t>(i)]; i = model.getJoint(i).parent)
+            moves[static_cast<std::size_t>(i)] = 1;
+    std::vector<int> found;
+    for (int i = 0; i < model.getNumLinks(); ++i)
+        if (moves[static_cast<std::size_t>(i)]) found.push_back(i);
+    return found;
+}
+
 // d(theta)/d(delta) for exp(theta') = exp(delta) exp(theta): the inverse of SO(3)'s left Jacobian (Barfoot,
 // State Estimation for Robotics, eq. 7.82). Exact, so that a fit that cannot reach its targets still stops
 // at the true optimum of its cost.
@@ -96,6 +109,9 @@ InverseKinematicsSolver::InverseKinematicsSolver(const Model& model, std::vector
     couplerOfU_.assign(static_cast<std::size_t>(nu), -1);
     for (std::size_t k = 0; k < model.getCouplers().size(); ++k)
         couplerOfU_[static_cast<std::size_t>(model.getCouplers()[k].dependentU)] = static_cast<int>(k);
+    jointOfU_.resize(static_cast<std::size_t>(nu));
+    for (int i = 0; i < model.getNumLinks(); ++i)
+        for (int k = 0; k < model.getJoint(i).nu; ++k) jointOfU_[static_cast<std::size_t>(model.getJoint(i).uStart + k)] = i;
     for (int i = 0; i < model.getNumLinks(); ++i) {
         if (model.getLink(i).isVirtual) continue;  // massless wire nodes: no marker sees them
         const Joint& joint = model.getJoint(i);
@@ -123,6 +139,13 @@ InverseKinematicsSolver::InverseKinematicsSolver(const Model& model, std::vector
     curvature_.setZero(numFree_, numFree_);
     observedIndex_.assign(static_cast<std::size_t>(numFree_), -1);
     orientationErrors_.resize(static_cast<Eigen::Index>(orientationTasks_.size()));
+    std::vector<int> loopLinks;
+    for (const Loop& loop : model.getLoops()) loopLinks.insert(loopLinks.end(), {loop.linkA, loop.linkB});
+    std::vector<int> targetLinks = loopLinks;
+    for (const int m : taskMarker_) targetLinks.push_back(markers_[static_cast<std::size_t>(m)].link);
+    targetLinks.insert(targetLinks.end(), taskLink_.begin(), taskLink_.end());
+    jacobianLinks_ = findJointsMoving(model, targetLinks);
+    loopChainLinks_ = findJointsMoving(model, loopLinks);
 }
 
 // Where a speed u's effect goes among the free unknowns, and by what factor: itself for a free speed, the
@@ -139,71 +162,151 @@ std::pair<int, double> InverseKinematicsSolver::findFreeColumn(int u) const {
     return {independent, coupler.scaleFactor * coupler.function.calcDerivative(lastQ_[coupler.independentQ], 1)};
 }
 
-void InverseKinematicsSolver::calcJointMotions() {
-    for (int i = 0; i < model_.getNumLinks(); ++i)
+void InverseKinematicsSolver::calcJointMotions(const std::vector<int>& links) {
+    for (const int i : links)
         jointMotion_G_[static_cast<std::size_t>(i)] = calcJointMotion_G(model_.getJoint(i), data_, i, data_.p_GM[static_cast<std::size_t>(i)]);
 }
 
-// scale x d(p_G)/du for a point p_G fixed on `link`: each joint from the link to the root moves it, by its
-// twist about the joint centre shifted to the point.
-void InverseKinematicsSolver::addPointJacobian(int link, const Eigen::Vector3d& p_G, double scale,
-                                               Eigen::Ref<Eigen::MatrixXd> rows) {
+// visit(col, d(p_G)/d(unknown col)) for a point p_G fixed on `link`, or visit(col, d(w_GB)/d(unknown col))
+// for its angular velocity: each joint from the link to the root moves it, by its twist (about the joint
+// centre, shifted to the point).
+template <bool angular, class Visit>
+void InverseKinematicsSolver::visitJacobianColumns(int link, const Eigen::Vector3d& p_G, Visit&& visit) const {
     for (int i = link; i != kGround; i = model_.getJoint(i).parent) {
         const Joint& joint = model_.getJoint(i);
         const JointMotion& H_G = jointMotion_G_[static_cast<std::size_t>(i)];
         const Eigen::Vector3d arm = p_G - data_.p_GM[static_cast<std::size_t>(i)];
         for (int k = 0; k < joint.nu; ++k) {
             const auto [col, factor] = findFreeColumn(joint.uStart + k);
-            if (col >= 0) rows.col(col) += (scale * factor) * (H_G.col(k).tail<3>() + H_G.col(k).head<3>().cross(arm));
+            if (col < 0) continue;
+            if constexpr (angular)
+                visit(col, factor * H_G.col(k).head<3>());
+            else
+                visit(col, factor * (H_G.col(k).tail<3>() + H_G.col(k).head<3>().cross(arm)));
         }
     }
 }
 
-void InverseKinematicsSolver::addAngularJacobian(int link, const Eigen::Matrix3d& scale_G, Eigen::Ref<Eigen::MatrixXd> rows) {
-    for (int i = link; i != kGround; i = model_.getJoint(i).parent) {
-        const Joint& joint = model_.getJoint(i);
-        const JointMotion& H_G = jointMotion_G_[static_cast<std::size_t>(i)];
-        for (int k = 0; k < joint.nu; ++k) {
-            const auto [col, factor] = findFreeColumn(joint.uStart + k);
-            if (col >= 0) rows.col(col) += factor * (scale_G * H_G.col(k).head<3>());
-        }
+void InverseKinematicsSolver::addPointJacobian(int link, const Eigen::Vector3d& p_G, double scale,
+                                               Eigen::Ref<Eigen::MatrixXd> rows) const {
+    visitJacobianColumns<false>(link, p_G, [&](int col, const Eigen::Vector3d& dp) { rows.col(col) += scale * dp; });
+}
+
+void InverseKinematicsSolver::addAngularJacobian(int link, const Eigen::Matrix3d& scale_G, Eigen::Ref<Eigen::MatrixXd> rows) const {
+    visitJacobianColumns<true>(link, Eigen::Vector3d::Zero(), [&](int col, const Eigen::Vector3d& dw) { rows.col(col) += scale_G * dw; });
+}
+
+// gradient += (d(p_G)/du)^T force: A^T r for a point's rows without forming them.
+void InverseKinematicsSolver::addPointGradient(int link, const Eigen::Vector3d& p_G, const Eigen::Vector3d& force,
+                                               Eigen::VectorXd& gradient) const {
+    if (link == kGround) return;
+    visitJacobianColumns<false>(link, p_G, [&](int col, const Eigen::Vector3d& dp) { gradient[col] += dp.dot(force); });
+}
+
+// Per task kind: its residual rows at the pose in data_, their Jacobian rows, and their share A^T r of the
+// gradient without forming those rows (the curvature's differences).
+
+// Rows sqrt(w) theta, theta the rotation vector of R_GF R_target^T (the error, in G); d(theta)/dt =
+// J_l(theta)^-1 w_GB.
+bool InverseKinematicsSolver::evaluateOrientation(std::size_t t, const InverseKinematicsTargets& targets,
+                                                  Eigen::Ref<Eigen::VectorXd> r) {
+    const Eigen::Matrix3d& R_target = targets.orientations[t];
+    if (!R_target.allFinite()) {
+        r.setZero();
+        orientationErrors_[static_cast<Eigen::Index>(t)] = kNaN;
+        return false;
+    }
+    const std::size_t b = static_cast<std::size_t>(taskLink_[t]);
+    const Eigen::Vector3d theta = calcRotationVector(data_.R_GB[b] * orientationTasks_[t].R_BF * R_target.transpose());
+    r = std::sqrt(orientationTasks_[t].weight) * theta;
+    orientationErrors_[static_cast<Eigen::Index>(t)] = theta.norm();
+    return true;
+}
+
+// w J_l(theta)^-1, the rows' factor on the link's angular velocity; theta from the residual r (0 for w = 0).
+Eigen::Matrix3d InverseKinematicsSolver::calcOrientationScale(std::size_t t, const Eigen::Vector3d& r) const {
+    const double w = std::sqrt(orientationTasks_[t].weight);
+    return w > 0 ? Eigen::Matrix3d(w * calcInverseLeftJacobian(r / w)) : Eigen::Matrix3d::Zero();
+}
+
+void InverseKinematicsSolver::addOrientationJacobian(std::size_t t, const Eigen::Vector3d& r, Eigen::Ref<Eigen::MatrixXd> A) const {
+    addAngularJacobian(taskLink_[t], calcOrientationScale(t, r), A);
+}
+
+void InverseKinematicsSolver::addOrientationGradient(std::size_t t, const Eigen::Vector3d& r, Eigen::VectorXd& gradient) const {
+    const Eigen::Vector3d moment = calcOrientationScale(t, r).transpose() * r;
+    visitJacobianColumns<true>(taskLink_[t], Eigen::Vector3d::Zero(),
+                               [&](int col, const Eigen::Vector3d& dw) { gradient[col] += dw.dot(moment); });
+}
+
+bool InverseKinematicsSolver::evaluateMarker(std::size_t t, const InverseKinematicsTargets& targets, Eigen::Ref<Eigen::VectorXd> r) {
+    const Eigen::Vector3d observed = targets.markers.col(static_cast<Eigen::Index>(t));
+    if (!observed.allFinite()) {
+        r.setZero();
+        markerErrors_[static_cast<Eigen::Index>(t)] = kNaN;
+        return false;
+    }
+    const Eigen::Vector3d p_G = calcMarkerLocation_G(data_, markers_[static_cast<std::size_t>(taskMarker_[t])]);
+    r = std::sqrt(markerTasks_[t].weight) * (p_G - observed);
+    markerErrors_[static_cast<Eigen::Index>(t)] = (p_G - observed).norm();
+    return true;
+}
+
+void InverseKinematicsSolver::addMarkerJacobian(std::size_t t, Eigen::Ref<Eigen::MatrixXd> A) const {
+    const Marker& marker = markers_[static_cast<std::size_t>(taskMarker_[t])];
+    if (marker.link != kGround) addPointJacobian(marker.link, calcMarkerLocation_G(data_, marker), std::sqrt(markerTasks_[t].weight), A);
+}
+
+void InverseKinematicsSolver::addMarkerGradient(std::size_t t, const Eigen::Vector3d& r, Eigen::VectorXd& gradient) const {
+    const Marker& marker = markers_[static_cast<std::size_t>(taskMarker_[t])];
+    addPointGradient(marker.link, calcMarkerLocation_G(data_, marker), std::sqrt(markerTasks_[t].weight) * r, gradient);
+}
+
+void InverseKinematicsSolver::evaluateCoordinates(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q,
+                                                  Eigen::Ref<Eigen::VectorXd> r, Eigen::Ref<Eigen::MatrixXd> A,
+                                                  bool withJacobian) {
+    if (withJacobian) A.setZero();
+    for (std::size_t t = 0; t < coordinateTasks_.size(); ++t) {
+        const Eigen::Index row = static_cast<Eigen::Index>(t);
+        const int qi = taskCoordinate_[t];
+        const double w = std::sqrt(coordinateTasks_[t].weight);
+        r[row] = w * (q[qi] - targets.coordinates[row]);
+        if (!withJacobian) continue;
+        const Coordinate& c = model_.getCoordinates()[static_cast<std::size_t>(qi)];
+        const Joint& joint = model_.getJoint(c.joint);
+        const auto [col, factor] = findFreeColumn(joint.uStart + (qi - joint.qStart));
+        if (col >= 0) A(row, col) += w * factor;
     }
 }
 
-// Rows sqrt(w) theta, theta the rotation vector of R_GF R_target^T (the error, in G), after the marker and
-// coordinate rows; d(theta)/dt = J_l(theta)^-1 w_GB.
-void InverseKinematicsSolver::evaluateOrientations(const InverseKinematicsTargets& targets, bool withJacobian) {
-    const Eigen::Index first = 3 * static_cast<Eigen::Index>(markerTasks_.size()) +
-                               static_cast<Eigen::Index>(coordinateTasks_.size());
-    for (std::size_t t = 0; t < orientationTasks_.size(); ++t) {
-        const Eigen::Index row = first + 3 * static_cast<Eigen::Index>(t);
-        const Eigen::Matrix3d& R_target = targets.orientations[t];
-        if (!R_target.allFinite()) {
-            r_.segment<3>(row).setZero();
-            orientationErrors_[static_cast<Eigen::Index>(t)] = kNaN;
-            continue;
-        }
-        const std::size_t b = static_cast<std::size_t>(taskLink_[t]);
-        const Eigen::Vector3d theta = calcRotationVector(data_.R_GB[b] * orientationTasks_[t].R_BF * R_target.transpose());
-        const double w = std::sqrt(orientationTasks_[t].weight);
-        r_.segment<3>(row) = w * theta;
-        orientationErrors_[static_cast<Eigen::Index>(t)] = theta.norm();
-        if (withJacobian) addAngularJacobian(static_cast<int>(b), w * calcInverseLeftJacobian(theta), A_.middleRows<3>(row));
-    }
+// A loop's two points in G, on linkA and linkB.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> InverseKinematicsSolver::calcLoopPoints(std::size_t l) const {
+    const Loop& loop = model_.getLoops()[l];
+    return {calcMarkerLocation_G(data_, Marker{"", loop.linkA, loop.p_A, ""}),
+            calcMarkerLocation_G(data_, Marker{"", loop.linkB, loop.p_B, ""})};
 }
 
-// The loops' gaps (and, given G, their Jacobian) at the pose in data_.
-void InverseKinematicsSolver::fillLoopGaps(Eigen::VectorXd& c, Eigen::MatrixXd* G) {
-    if (G) G->setZero();
+void InverseKinematicsSolver::addLoopJacobian(std::size_t l, Eigen::Ref<Eigen::MatrixXd> G) const {
+    const Loop& loop = model_.getLoops()[l];
+    const auto [p_A, p_B] = calcLoopPoints(l);
+    if (loop.linkA != kGround) addPointJacobian(loop.linkA, p_A, 1, G);
+    if (loop.linkB != kGround) addPointJacobian(loop.linkB, p_B, -1, G);
+}
+
+void InverseKinematicsSolver::addLoopGradient(std::size_t l, const Eigen::Vector3d& multiplier, Eigen::VectorXd& gradient) const {
+    const Loop& loop = model_.getLoops()[l];
+    const auto [p_A, p_B] = calcLoopPoints(l);
+    addPointGradient(loop.linkA, p_A, multiplier, gradient);
+    addPointGradient(loop.linkB, p_B, -multiplier, gradient);
+}
+
+void InverseKinematicsSolver::fillLoopGaps(bool withJacobian) {
+    if (withJacobian) G_.setZero();
     for (std::size_t l = 0; l < model_.getLoops().size(); ++l) {
-        const Loop& loop = model_.getLoops()[l];
-        const Marker a{"", loop.linkA, loop.p_A, ""}, b{"", loop.linkB, loop.p_B, ""};
-        const Eigen::Vector3d p_A = calcMarkerLocation_G(data_, a), p_B = calcMarkerLocation_G(data_, b);
         const Eigen::Index row = 3 * static_cast<Eigen::Index>(l);
-        c.segment<3>(row) = p_A - p_B;
-        if (!G) continue;
-        if (loop.linkA != kGround) addPointJacobian(loop.linkA, p_A, 1, G->middleRows<3>(row));
-        if (loop.linkB != kGround) addPointJacobian(loop.linkB, p_B, -1, G->middleRows<3>(row));
+        const auto [p_A, p_B] = calcLoopPoints(l);
+        c_.segment<3>(row) = p_A - p_B;
+        if (withJacobian) addLoopJacobian(l, G_.middleRows<3>(row));
     }
 }
 
@@ -211,42 +314,24 @@ InverseKinematicsSolver::Score InverseKinematicsSolver::evaluate(const InverseKi
                                                                 const Eigen::VectorXd& q, bool withJacobian) {
     calcPositionKinematics(model_, data_, q);
     lastQ_ = q;
-    if (withJacobian) {
-        A_.setZero();
-        G_.setZero();
-        calcJointMotions();
-    }
+    if (withJacobian) calcJointMotions(jacobianLinks_);
+    if (withJacobian) A_.setZero();
     markersSeen_ = 0;
     for (std::size_t t = 0; t < markerTasks_.size(); ++t) {
-        const Eigen::Index row = 3 * static_cast<Eigen::Index>(t);
-        const Eigen::Vector3d observed = targets.markers.col(static_cast<Eigen::Index>(t));
-        if (!observed.allFinite()) {
-            r_.segment<3>(row).setZero();
-            markerErrors_[static_cast<Eigen::Index>(t)] = kNaN;
-            continue;
-        }
-        const Marker& marker = markers_[static_cast<std::size_t>(taskMarker_[t])];
-        const Eigen::Vector3d p_G = calcMarkerLocation_G(data_, marker);
-        const double w = std::sqrt(markerTasks_[t].weight);
-        r_.segment<3>(row) = w * (p_G - observed);
-        markerErrors_[static_cast<Eigen::Index>(t)] = (p_G - observed).norm();
-        ++markersSeen_;
-        if (withJacobian && marker.link != kGround) addPointJacobian(marker.link, p_G, w, A_.middleRows<3>(row));
+        const Eigen::Index row = markerRow(t);
+        const bool seen = evaluateMarker(t, targets, r_.segment<3>(row));
+        markersSeen_ += seen;
+        if (seen && withJacobian) addMarkerJacobian(t, A_.middleRows<3>(row));
     }
-    const Eigen::Index first = 3 * static_cast<Eigen::Index>(markerTasks_.size());
-    for (std::size_t t = 0; t < coordinateTasks_.size(); ++t) {
-        const Eigen::Index row = first + static_cast<Eigen::Index>(t);
-        const int qi = taskCoordinate_[t];
-        const double w = std::sqrt(coordinateTasks_[t].weight);
-        r_[row] = w * (q[qi] - targets.coordinates[static_cast<Eigen::Index>(t)]);
-        if (!withJacobian) continue;
-        const Coordinate& c = model_.getCoordinates()[static_cast<std::size_t>(qi)];
-        const Joint& joint = model_.getJoint(c.joint);
-        const auto [col, factor] = findFreeColumn(joint.uStart + (qi - joint.qStart));
-        if (col >= 0) A_(row, col) += w * factor;
+    const Eigen::Index coordinates = static_cast<Eigen::Index>(coordinateTasks_.size());
+    evaluateCoordinates(targets, q, r_.segment(coordinateRow(0), coordinates), A_.middleRows(coordinateRow(0), coordinates),
+                        withJacobian);
+    for (std::size_t t = 0; t < orientationTasks_.size(); ++t) {
+        const Eigen::Index row = orientationRow(t);
+        if (evaluateOrientation(t, targets, r_.segment<3>(row)) && withJacobian)
+            addOrientationJacobian(t, r_.segment<3>(row), A_.middleRows<3>(row));
     }
-    evaluateOrientations(targets, withJacobian);
-    fillLoopGaps(c_, withJacobian ? &G_ : nullptr);
+    fillLoopGaps(withJacobian);
     const double cost = 0.5 * r_.squaredNorm();
     return {cost, cost + (kLoopMerit + 2 * multipliers_.lpNorm<Eigen::Infinity>()) * c_.norm(),
             c_.size() == 0 || c_.lpNorm<Eigen::Infinity>() <= kClosedGap};
@@ -255,9 +340,6 @@ InverseKinematicsSolver::Score InverseKinematicsSolver::evaluate(const InverseKi
 // Whether a target or loop moves with the free unknown `col` at the last evaluation (a finger no marker
 // sees does not).
 bool InverseKinematicsSolver::isObserved(Eigen::Index col) const { return !(A_.col(col).isZero(0) && G_.col(col).isZero(0)); }
-
-// The Lagrangian's gradient over the free unknowns at the last evaluation.
-Eigen::VectorXd InverseKinematicsSolver::calcLagrangianGradient() const { return A_.transpose() * r_ + G_.transpose() * multipliers_; }
 
 // The linearised step leaves the loops open by its square; closing them again before the step is judged
 // keeps the merit from refusing good steps for that gap (the Maratos effect) and every accepted pose
@@ -268,9 +350,10 @@ void InverseKinematicsSolver::closeLoops(Eigen::VectorXd& q) {
         // The gaps alone: the tasks are evaluated once the pose is closed.
         calcPositionKinematics(model_, data_, q);
         lastQ_ = q;
-        calcJointMotions();
-        fillLoopGaps(c_, &G_);
+        fillLoopGaps(false);
         if (c_.lpNorm<Eigen::Infinity>() <= kClosedGap) return;
+        calcJointMotions(loopChainLinks_);
+        fillLoopGaps(true);
         // The minimum-norm step leaves the unknowns no loop moves where they are: it is decomposed over the
         // loops' chains alone (a few dozen columns of the whole body's 156).
         loopColumns_.clear();
@@ -499,28 +582,82 @@ InverseKinematicsReport InverseKinematicsSolver::solve(const InverseKinematicsTa
 
 // The Lagrangian's curvature beyond Gauss-Newton's A^T A, the residuals' and the loops' sum r_i Hess(r_i) +
 // lambda^T Hess(c), by forward differences of its gradient over the free unknowns that a task or loop
-// observes (one Jacobian evaluation each; the others have none).
-// Without it a fit that cannot reach its targets (residuals of centimetres, segment frames a few tenths of
-// a radian off, as in any real capture) or pulls against a loop converges only linearly. Restores the
-// evaluation at q.
+// observes. Without it a fit that cannot reach its targets (residuals of centimetres, segment frames a few
+// tenths of a radian off, as in any real capture) or pulls against a loop converges only linearly.
+// A difference re-evaluates only the rows whose links the perturbed unknown moves (its joint's subtree, and
+// its couplers'): the others' contributions to the gradient are the same numbers before and after, so the
+// column is what a whole re-evaluation gives, at the cost of the subtree. Restores the evaluation at q.
 void InverseKinematicsSolver::refreshCurvature(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q) {
     const double h = 1e-7;
-    const Eigen::MatrixXd A = A_;
-    const Eigen::VectorXd gradient = calcLagrangianGradient();
-    std::vector<char> observed(static_cast<std::size_t>(numFree_));
-    for (Eigen::Index j = 0; j < numFree_; ++j) observed[static_cast<std::size_t>(j)] = isObserved(j);
+    const std::size_t numLoops = model_.getLoops().size();
+    // Each task's and loop's share of the gradient at q, A_t^T r_t and G_l^T lambda_l.
+    Eigen::MatrixXd markerGradient(numFree_, static_cast<Eigen::Index>(markerTasks_.size()));
+    Eigen::MatrixXd orientationGradient(numFree_, static_cast<Eigen::Index>(orientationTasks_.size()));
+    Eigen::MatrixXd loopGradient(numFree_, static_cast<Eigen::Index>(numLoops));
+    for (std::size_t t = 0; t < markerTasks_.size(); ++t)
+        markerGradient.col(static_cast<Eigen::Index>(t)) = A_.middleRows<3>(markerRow(t)).transpose() * r_.segment<3>(markerRow(t));
+    for (std::size_t t = 0; t < orientationTasks_.size(); ++t)
+        orientationGradient.col(static_cast<Eigen::Index>(t)) =
+            A_.middleRows<3>(orientationRow(t)).transpose() * r_.segment<3>(orientationRow(t));
+    for (std::size_t l = 0; l < numLoops; ++l) {
+        const Eigen::Index row = 3 * static_cast<Eigen::Index>(l);
+        loopGradient.col(static_cast<Eigen::Index>(l)) = G_.middleRows<3>(row).transpose() * multipliers_.segment<3>(row);
+    }
+    const Eigen::Index coordinateRows = static_cast<Eigen::Index>(coordinateTasks_.size());
+    const Eigen::VectorXd coordinateGradient =
+        A_.middleRows(coordinateRow(0), coordinateRows).transpose() * r_.segment(coordinateRow(0), coordinateRows);
+    const std::vector<JointMotion> jointMotion = jointMotion_G_;
+    std::vector<char> moved(static_cast<std::size_t>(model_.getNumLinks()));
+    auto movedLink = [&](int link) { return link != kGround && moved[static_cast<std::size_t>(link)]; };
+    Eigen::MatrixXd coordinateRowsA(coordinateRows, numFree_);
+    Eigen::Vector3d residual;
+    Eigen::VectorXd coordinateResiduals(coordinateRows), change(numFree_);
     Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(numFree_, numFree_);
     for (int u = 0; u < model_.getNumU(); ++u) {
         const int col = freeColumn_[static_cast<std::size_t>(u)];
-        if (col < 0 || !observed[static_cast<std::size_t>(col)]) continue;
-        Eigen::VectorXd plus = integrateCoordinates(model_, q, Eigen::VectorXd::Unit(model_.getNumU(), u) * h, 1.0);
+        if (col < 0 || !isObserved(col)) continue;
+        // Only u's joint stepped: integrateCoordinates renormalises every quaternion, which would move
+        // every link by roundoff.
+        const Joint& stepped = model_.getJoint(jointOfU_[static_cast<std::size_t>(u)]);
+        Eigen::VectorXd plus = q;
+        plus.segment(stepped.qStart, stepped.nq) = integrateCoordinates(model_, q, Eigen::VectorXd::Unit(model_.getNumU(), u) * h, 1.0)
+                                                       .segment(stepped.qStart, stepped.nq);
         applyCoordinateCouplers(model_, plus);
-        evaluate(targets, plus, true);
-        hessian.col(col) = (calcLagrangianGradient() - gradient) / h;
+        calcPositionKinematics(model_, data_, plus);
+        lastQ_ = plus;
+        for (int i = 0; i < model_.getNumLinks(); ++i) {
+            const Joint& joint = model_.getJoint(i);
+            moved[static_cast<std::size_t>(i)] = movedLink(joint.parent) ||
+                                                 plus.segment(joint.qStart, joint.nq) != q.segment(joint.qStart, joint.nq);
+        }
+        for (const int i : jacobianLinks_)
+            if (moved[static_cast<std::size_t>(i)])
+                jointMotion_G_[static_cast<std::size_t>(i)] = calcJointMotion_G(model_.getJoint(i), data_, i, data_.p_GM[static_cast<std::size_t>(i)]);
+        evaluateCoordinates(targets, plus, coordinateResiduals, coordinateRowsA, true);
+        change = coordinateRowsA.transpose() * coordinateResiduals - coordinateGradient;
+        for (std::size_t t = 0; t < markerTasks_.size(); ++t) {
+            if (!movedLink(markers_[static_cast<std::size_t>(taskMarker_[t])].link) || !evaluateMarker(t, targets, residual)) continue;
+            addMarkerGradient(t, residual, change);
+            change -= markerGradient.col(static_cast<Eigen::Index>(t));
+        }
+        for (std::size_t t = 0; t < orientationTasks_.size(); ++t) {
+            if (!movedLink(taskLink_[t]) || !evaluateOrientation(t, targets, residual)) continue;
+            addOrientationGradient(t, residual, change);
+            change -= orientationGradient.col(static_cast<Eigen::Index>(t));
+        }
+        for (std::size_t l = 0; l < numLoops; ++l) {
+            const Loop& loop = model_.getLoops()[l];
+            if (!movedLink(loop.linkA) && !movedLink(loop.linkB)) continue;
+            addLoopGradient(l, multipliers_.segment<3>(3 * static_cast<Eigen::Index>(l)), change);
+            change -= loopGradient.col(static_cast<Eigen::Index>(l));
+        }
+        hessian.col(col) = change / h;
+        for (const int i : jacobianLinks_)
+            if (moved[static_cast<std::size_t>(i)]) jointMotion_G_[static_cast<std::size_t>(i)] = jointMotion[static_cast<std::size_t>(i)];
     }
     // An unobserved unknown's column is zero in both, and so in the difference.
     curvature_ = 0.5 * (hessian + hessian.transpose());
-    addGaussNewtonHessian(curvature_, A, -1);
+    addGaussNewtonHessian(curvature_, A_, -1);
     evaluate(targets, q, true);
     curvatureResiduals_ = std::sqrt(r_.squaredNorm() + multipliers_.squaredNorm());
     useCurvature_ = true;

@@ -90,15 +90,39 @@ private:
     };
     // Fills r_ and c_ (and A_, G_ with the Jacobian) at q.
     Score evaluate(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q, bool withJacobian);
-    void calcJointMotions();
-    void addPointJacobian(int link, const Eigen::Vector3d& p_G, double scale, Eigen::Ref<Eigen::MatrixXd> rows);
-    // scale_G x (the link's angular velocity in G)/du.
-    void addAngularJacobian(int link, const Eigen::Matrix3d& scale_G, Eigen::Ref<Eigen::MatrixXd> rows);
-    void evaluateOrientations(const InverseKinematicsTargets& targets, bool withJacobian);
-    Eigen::VectorXd calcLagrangianGradient() const;
+    // jointMotion_G_ of `links` at the pose in data_.
+    void calcJointMotions(const std::vector<int>& links);
+    template <bool angular, class Visit>
+    void visitJacobianColumns(int link, const Eigen::Vector3d& p_G, Visit&& visit) const;
+    // rows += scale x d(p_G)/du for a point p_G fixed on `link`.
+    void addPointJacobian(int link, const Eigen::Vector3d& p_G, double scale, Eigen::Ref<Eigen::MatrixXd> rows) const;
+    // rows += scale_G x (the link's angular velocity in G)/du.
+    void addAngularJacobian(int link, const Eigen::Matrix3d& scale_G, Eigen::Ref<Eigen::MatrixXd> rows) const;
+    void addPointGradient(int link, const Eigen::Vector3d& p_G, const Eigen::Vector3d& force, Eigen::VectorXd& gradient) const;
+    // A task's residual rows r at the pose in data_ (false, and zeros, where not seen this frame), their
+    // rows of the Jacobian (added to zeroed rows), and their share A^T r of the gradient (added).
+    bool evaluateMarker(std::size_t task, const InverseKinematicsTargets& targets, Eigen::Ref<Eigen::VectorXd> r);
+    void addMarkerJacobian(std::size_t task, Eigen::Ref<Eigen::MatrixXd> A) const;
+    void addMarkerGradient(std::size_t task, const Eigen::Vector3d& r, Eigen::VectorXd& gradient) const;
+    bool evaluateOrientation(std::size_t task, const InverseKinematicsTargets& targets, Eigen::Ref<Eigen::VectorXd> r);
+    Eigen::Matrix3d calcOrientationScale(std::size_t task, const Eigen::Vector3d& r) const;
+    void addOrientationJacobian(std::size_t task, const Eigen::Vector3d& r, Eigen::Ref<Eigen::MatrixXd> A) const;
+    void addOrientationGradient(std::size_t task, const Eigen::Vector3d& r, Eigen::VectorXd& gradient) const;
+    // Every coordinate task's rows.
+    void evaluateCoordinates(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q,
+                             Eigen::Ref<Eigen::VectorXd> r, Eigen::Ref<Eigen::MatrixXd> A, bool withJacobian);
+    std::pair<Eigen::Vector3d, Eigen::Vector3d> calcLoopPoints(std::size_t loop) const;
+    void addLoopJacobian(std::size_t loop, Eigen::Ref<Eigen::MatrixXd> G) const;
+    void addLoopGradient(std::size_t loop, const Eigen::Vector3d& multiplier, Eigen::VectorXd& gradient) const;
+    // The loops' gaps into c_ (and, with the Jacobian, G_) at the pose in data_.
+    void fillLoopGaps(bool withJacobian);
+    Eigen::Index markerRow(std::size_t task) const { return 3 * static_cast<Eigen::Index>(task); }
+    Eigen::Index coordinateRow(std::size_t task) const { return markerRow(markerTasks_.size()) + static_cast<Eigen::Index>(task); }
+    Eigen::Index orientationRow(std::size_t task) const {
+        return coordinateRow(coordinateTasks_.size()) + 3 * static_cast<Eigen::Index>(task);
+    }
     bool isObserved(Eigen::Index col) const;
     std::pair<int, double> findFreeColumn(int u) const;
-    void fillLoopGaps(Eigen::VectorXd& c, Eigen::MatrixXd* G);
     void refreshCurvature(const InverseKinematicsTargets& targets, const Eigen::VectorXd& q);
     bool isSmallStep(const Eigen::VectorXd& delta) const;
     // 1/2 sum of the weights of the tasks seen x accuracy^2: the cost of a fit that misses every target by
@@ -128,6 +152,7 @@ private:
     std::vector<int> taskMarker_;      // per marker task: index into markers_
     std::vector<int> taskCoordinate_;  // per coordinate task: its index in q
     std::vector<int> freeColumn_;      // per u: the unknown it moves, or -1 (locked, coupled or a virtual link)
+    std::vector<int> jointOfU_;        // per u: its joint
     std::vector<int> couplerOfU_;      // per u: the coupler whose dependent coordinate it is, or -1
     // Free unknowns of clamped coordinates with a finite range, with the coordinate's index in q.
     std::vector<std::pair<int, int>> boundedColumns_;
@@ -138,6 +163,8 @@ private:
     Eigen::MatrixXd A_, G_;
     Eigen::VectorXd multipliers_;    // the loops' Lagrange multipliers from the last step
     std::vector<JointMotion> jointMotion_G_;  // per link at the last evaluation, about its joint centre
+    std::vector<int> jacobianLinks_;   // the links whose joints move a target or loop
+    std::vector<int> loopChainLinks_;  // those whose joints move a loop
     Eigen::MatrixXd curvature_;       // the Lagrangian's curvature beyond A^T A where last refreshed
     double curvatureResiduals_ = 0;   // |[r; multipliers]| there
     bool useCurvature_ = true;        // in this solve's steps
