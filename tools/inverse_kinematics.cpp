@@ -360,7 +360,13 @@ void InverseKinematicsSolver::closeLoops(Eigen::VectorXd& q) {
         for (Eigen::Index j = 0; j < numFree_; ++j)
             if (!G_.col(j).isZero(0)) loopColumns_.push_back(j);
         Eigen::VectorXd delta = Eigen::VectorXd::Zero(numFree_);
-        const Eigen::VectorXd chainStep = G_(Eigen::all, loopColumns_).completeOrthogonalDecomposition().solve(-c_);
+        // G+ = G^T (G G^T)+: the minimum-norm step through the loops' few rows (12 x 12 on the whole body)
+        // rather than a decomposition of all the chains' columns (90); a direction the loops repeat, or
+        // nearly, is left alone rather than stepped along by its tiny singular value.
+        const Eigen::MatrixXd chainG = G_(Eigen::all, loopColumns_);
+        Eigen::MatrixXd GGt = Eigen::MatrixXd::Zero(chainG.rows(), chainG.rows());
+        addGaussNewtonHessian(GGt, chainG.transpose(), 1);
+        const Eigen::VectorXd chainStep = chainG.transpose() * GGt.completeOrthogonalDecomposition().solve(-c_);
         delta(loopColumns_) = chainStep;
         q = integrateCoordinates(model_, q, toSpeeds(delta), 1.0);
         applyCoordinateCouplers(model_, q);
