@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sinew/tensions/equality_rows_polish.hpp"
 #include "sinew/tensions/infeasible_frame.hpp"
 
 namespace sinew {
@@ -433,6 +434,8 @@ void ActiveSetSolver::writeDualResult(const DistributionProblem& problem, bool c
         }
     }
     result.multipliers = y_;
+    // The regulariser leaves the equality rows off by sigma y: projected onto them.
+    if (converged) polishEqualityRows(problem, problem.weight, result.x, result.multipliers);
     result.iterations = iterations;
     result.usedIpopt = false;
     calcResultSummary(problem, result);
@@ -448,7 +451,7 @@ void ActiveSetSolver::writeDualResult(const DistributionProblem& problem, bool c
     } else {
         result.status = DistributionStatus::Optimal;
     }
-    result.kkt = calcQpKktResiduals(problem, result.x, y_, center_);
+    result.kkt = calcQpKktResiduals(problem, result.x, result.multipliers, center_);
     hasWarmStart_ = converged;
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "sinew/core/error.hpp"
+#include "sinew/tensions/equality_rows_polish.hpp"
 
 namespace sinew {
 namespace {
@@ -195,24 +196,35 @@ void IpoptSolver::solve(const DistributionProblem& problem, double exponent, Dis
         double& xj = result.x[j];
         xj = xj <= lower + near ? lower : xj >= upper - near ? upper : xj;
     }
-    calcResultSummary(problem, result);
-    // Ipopt's Lagrangian is f + lambda^T g: the multiplier d f / d tau is -lambda; tolerance rows' is their residual.
+    // Ipopt's Lagrangian is f + lambda^T g: the multiplier d f / d tau is -lambda.
     for (int i = 0, k = 0; i < rows; ++i)
         if (problem.isEquality[static_cast<std::size_t>(i)]) {
             if (nlp->constraintMultipliers.size() > k) result.multipliers[i] = -nlp->constraintMultipliers[k];
             ++k;
-        } else {
-            result.multipliers[i] = result.residual[i];
         }
-    result.objective = 0;
-    // The QP's KKT residuals with per-variable weights w_j |x_j|^(p-2): their gradient w_j x_j is this cost's.
+    // The QP's weights w_j |x_j|^(p-2) at x: their gradient w_j x_j is this cost's, and (p - 1) times them
+    // its curvature.
     DistributionProblem& quadratic = backend_->quadratic;
     quadratic = problem;
-    for (int j = 0; j < numBounded; ++j) {
-        const double magnitude = std::abs(result.x[j]);
-        result.objective += problem.weight[j] / exponent * std::pow(magnitude, exponent);
-        if (magnitude > 0) quadratic.weight[j] *= std::pow(magnitude, exponent - 2);
+    auto setQuadraticWeights = [&] {
+        for (int j = 0; j < numBounded; ++j) {
+            const double magnitude = std::abs(result.x[j]);
+            quadratic.weight[j] = magnitude > 0 ? problem.weight[j] * std::pow(magnitude, exponent - 2) : problem.weight[j];
+        }
+    };
+    setQuadraticWeights();
+    // Ipopt meets the equality rows to its constraint tolerance, and the snap onto the bounds moves them
+    // by up to 1e-8: projected back onto them.
+    if (result.status == DistributionStatus::Optimal) {
+        polishEqualityRows(problem, (exponent - 1) * quadratic.weight, result.x, result.multipliers);
+        setQuadraticWeights();
     }
+    calcResultSummary(problem, result);
+    // A tolerance row's multiplier is its residual.
+    for (int i = 0; i < rows; ++i)
+        if (!problem.isEquality[static_cast<std::size_t>(i)]) result.multipliers[i] = result.residual[i];
+    result.objective = 0;
+    for (int j = 0; j < numBounded; ++j) result.objective += problem.weight[j] / exponent * std::pow(std::abs(result.x[j]), exponent);
     for (int i = 0; i < rows; ++i)
         if (!problem.isEquality[static_cast<std::size_t>(i)]) result.objective += 0.5 * result.residual[i] * result.residual[i];
     result.kkt = calcQpKktResiduals(quadratic, result.x, result.multipliers);
