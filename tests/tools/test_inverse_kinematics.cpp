@@ -147,6 +147,17 @@ Eigen::MatrixXd calcLoopJacobian(const Model& model, const Eigen::VectorXd& q, d
     return G;
 }
 
+// A random model without wires and with two loops.
+Model makeModelWithTwoLoops(int numLinks, unsigned seed, double customJointFraction = 0) {
+    RandomModelOptions options;
+    options.numLinks = numLinks;
+    options.numLoops = 2;
+    options.numWires = 0;
+    options.customJointFraction = customJointFraction;
+    options.seed = seed;
+    return generateRandomModel(options);
+}
+
 // The part of the weighted marker cost's gradient at q (central differences) that no combination of the
 // loops' normals explains: zero at a constrained optimum (KKT: g + G^T lambda = 0).
 double calcUnexplainedSlope(const Model& model, const std::vector<Marker>& markers, const std::vector<MarkerTask>& tasks,
@@ -176,12 +187,7 @@ double calcUnexplainedSlope(const Model& model, const std::vector<Marker>& marke
 // the fit keeps every loop closed, and no motion that keeps them closed lowers the cost (the cost's
 // gradient, by central differences, is a combination of the loops' normals).
 TEST(InverseKinematics, KeepsLoopsClosedAtAConstrainedOptimum) {
-    RandomModelOptions options;
-    options.numLinks = 10;
-    options.numLoops = 2;
-    options.numWires = 0;
-    options.seed = 5;
-    const Model model = generateRandomModel(options);
+    const Model model = makeModelWithTwoLoops(10, 5);
     std::mt19937 rng(11);
     const std::vector<Marker> markers = makeMarkers(model, rng);
     std::vector<MarkerTask> tasks = allMarkers(markers);
@@ -214,13 +220,7 @@ TEST(InverseKinematics, KeepsLoopsClosedAtAConstrainedOptimum) {
 // differences over the subtree each unknown moves) takes it to the constrained optimum (checked by central
 // differences of the cost, as above) in 24.
 TEST(InverseKinematics, ReachesAFarOptimumFastThroughTheResidualsCurvature) {
-    RandomModelOptions options;
-    options.numLinks = 12;
-    options.numLoops = 2;
-    options.numWires = 0;
-    options.customJointFraction = 0.3;
-    options.seed = 7;
-    const Model model = generateRandomModel(options);
+    const Model model = makeModelWithTwoLoops(12, 7, 0.3);
     std::mt19937 rng(3);
     const std::vector<Marker> markers = makeMarkers(model, rng);
     const std::vector<MarkerTask> tasks = allMarkers(markers);
