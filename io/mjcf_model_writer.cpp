@@ -245,8 +245,7 @@ Eigen::VectorXd mapVelocity(const Model& model, const Eigen::VectorXd& q, const 
         const Joint& joint = model.getJoint(link);
         const Eigen::Index s = toMujoco ? joint.uStart : dof, r = toMujoco ? dof : joint.uStart;
         dof += joint.nu;
-        const bool rotates = joint.type == JointType::Ball || joint.type == JointType::Free;
-        const Eigen::Matrix3d R_FM = rotates ? calcTransform(joint, q).R_FM : Eigen::Matrix3d::Identity();
+        const Eigen::Matrix3d R_FM = calcTransform(joint, q).R_FM;
         if (joint.type == JointType::Ball) {
             result.segment<3>(r) = (toMujoco ? Eigen::Matrix3d(R_FM.transpose()) : R_FM) * v.segment<3>(s);
         } else if (joint.type == JointType::Free && toMujoco) {

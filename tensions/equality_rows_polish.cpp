@@ -26,9 +26,9 @@ double polishEqualityRows(const DistributionProblem& problem, const Eigen::Vecto
     std::vector<int> rows;
     for (int i = 0; i < problem.getNumRows(); ++i)
         if (problem.isEquality[static_cast<std::size_t>(i)]) rows.push_back(i);
+    if (rows.empty()) return 0;
     Eigen::VectorXd residual = problem.target - problem.A * x;
     const double before = calcLargestResidual(residual, rows);
-    if (rows.empty()) return before;
     const double size = std::max({1.0, problem.target.cwiseAbs().maxCoeff(), (problem.A * x).cwiseAbs().maxCoeff()});
     if (before <= kRoundoff * size) return before;
     std::vector<int> rowIndex(static_cast<std::size_t>(problem.getNumRows()), -1);

@@ -220,13 +220,14 @@ void IpoptSolver::solve(const DistributionProblem& problem, double exponent, Dis
         setQuadraticWeights();
     }
     calcResultSummary(problem, result);
-    // A tolerance row's multiplier is its residual.
-    for (int i = 0; i < rows; ++i)
-        if (!problem.isEquality[static_cast<std::size_t>(i)]) result.multipliers[i] = result.residual[i];
     result.objective = 0;
     for (int j = 0; j < numBounded; ++j) result.objective += problem.weight[j] / exponent * std::pow(std::abs(result.x[j]), exponent);
-    for (int i = 0; i < rows; ++i)
-        if (!problem.isEquality[static_cast<std::size_t>(i)]) result.objective += 0.5 * result.residual[i] * result.residual[i];
+    // A tolerance row's multiplier is its residual, and its cost half the residual's square.
+    for (int i = 0; i < rows; ++i) {
+        if (problem.isEquality[static_cast<std::size_t>(i)]) continue;
+        result.multipliers[i] = result.residual[i];
+        result.objective += 0.5 * result.residual[i] * result.residual[i];
+    }
     result.kkt = calcQpKktResiduals(quadratic, result.x, result.multipliers);
 }
 

@@ -314,8 +314,10 @@ InverseKinematicsSolver::Score InverseKinematicsSolver::evaluate(const InverseKi
                                                                 const Eigen::VectorXd& q, bool withJacobian) {
     calcPositionKinematics(model_, data_, q);
     lastQ_ = q;
-    if (withJacobian) calcJointMotions(jacobianLinks_);
-    if (withJacobian) A_.setZero();
+    if (withJacobian) {
+        calcJointMotions(jacobianLinks_);
+        A_.setZero();
+    }
     markersSeen_ = 0;
     for (std::size_t t = 0; t < markerTasks_.size(); ++t) {
         const Eigen::Index row = markerRow(t);
