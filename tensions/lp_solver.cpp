@@ -152,6 +152,7 @@ struct LpSolver::Backend {
     LpArrays arrays;
     std::vector<unsigned char> basis;  // the previous frame's, while the problem is reloaded
     std::vector<char> rowTaken;        // startFromSlacksAndFreeColumns's workspace
+    std::vector<double> scaledAnswer;  // x and y, while finishWithinBounds tries the unscaled finish
 
     Backend() { simplex.setLogLevel(0); }
 
@@ -182,16 +183,47 @@ struct LpSolver::Backend {
         const int pivotCap = 20 * (simplex.numberRows() + simplex.numberColumns());
         simplex.setMaximumIterations(pivotCap);
         simplex.dual();
-        if (simplex.status() <= 1) return simplex.status();
+        if (simplex.status() <= 1) return finishWithinBounds(problem);
         simplex = ClpSimplex();
         simplex.setLogLevel(0);
         loaded = false;
         load(problem);
         simplex.setMaximumIterations(pivotCap);
         simplex.dual();
-        if (simplex.status() <= 1) return simplex.status();
-        simplex.primal();
-        return simplex.status();
+        if (simplex.status() > 1) simplex.primal();
+        return finishWithinBounds(problem);
+    }
+
+    // Clp keeps the bounds to its primal tolerance (1e-7) in the scaled problem: a column scaled up for its
+    // millimetre moment arms can end beyond a 1e6 N cap by millinewtons (5 mN at the kick's 3.917 s), and
+    // clamping it back moved a virtual link 4 mN out of balance. Where clamping would move any row by more
+    // than kClampShift of tau's size, the optimum is finished unscaled from its own basis, where the
+    // tolerance is in newtons (3 to 170 primal pivots on the kick's three such frames); should that fail,
+    // the scaled answer stands. Returns Clp's status.
+    int finishWithinBounds(const DistributionProblem& problem) {
+        constexpr double kClampShift = 1e-9;
+        if (simplex.status() != 0) return simplex.status();
+        const double* solution = simplex.primalColumnSolution();
+        Eigen::VectorXd clampMove = Eigen::VectorXd::Zero(problem.getNumVariables());
+        for (int j = 0; j < problem.getNumBounded(); ++j)
+            clampMove[j] = std::clamp(solution[j], problem.lower[j], problem.upper[j]) - solution[j];
+        const double size = std::max(1.0, problem.target.cwiseAbs().maxCoeff());
+        if (clampMove.isZero() || (problem.A * clampMove).cwiseAbs().maxCoeff() <= kClampShift * size) return 0;
+        const int rows = simplex.numberRows(), columns = simplex.numberColumns();
+        scaledAnswer.assign(solution, solution + columns);
+        scaledAnswer.insert(scaledAnswer.end(), simplex.dualRowSolution(), simplex.dualRowSolution() + rows);
+        basis.assign(simplex.statusArray(), simplex.statusArray() + rows + columns);
+        const int scaling = simplex.scalingFlag();
+        simplex.scaling(0);
+        simplex.primal(1);
+        simplex.scaling(scaling);
+        if (simplex.status() != 0) {
+            std::copy_n(scaledAnswer.data(), columns, simplex.primalColumnSolution());
+            std::copy_n(scaledAnswer.data() + columns, rows, simplex.dualRowSolution());
+            simplex.copyinStatus(basis.data());
+            simplex.setProblemStatus(0);
+        }
+        return 0;
     }
 };
 
