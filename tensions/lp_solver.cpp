@@ -152,7 +152,6 @@ struct LpSolver::Backend {
     LpArrays arrays;
     std::vector<unsigned char> basis;  // the previous frame's, while the problem is reloaded
     std::vector<char> rowTaken;        // startFromSlacksAndFreeColumns's workspace
-    std::vector<double> scaledAnswer;  // x and y, while finishWithinBounds tries the unscaled finish
 
     Backend() { simplex.setLogLevel(0); }
 
@@ -209,20 +208,12 @@ struct LpSolver::Backend {
             clampMove[j] = std::clamp(solution[j], problem.lower[j], problem.upper[j]) - solution[j];
         const double size = std::max(1.0, problem.target.cwiseAbs().maxCoeff());
         if (clampMove.isZero() || (problem.A * clampMove).cwiseAbs().maxCoeff() <= kClampShift * size) return 0;
-        const int rows = simplex.numberRows(), columns = simplex.numberColumns();
-        scaledAnswer.assign(solution, solution + columns);
-        scaledAnswer.insert(scaledAnswer.end(), simplex.dualRowSolution(), simplex.dualRowSolution() + rows);
-        basis.assign(simplex.statusArray(), simplex.statusArray() + rows + columns);
-        const int scaling = simplex.scalingFlag();
-        simplex.scaling(0);
-        simplex.primal(1);
-        simplex.scaling(scaling);
-        if (simplex.status() != 0) {
-            std::copy_n(scaledAnswer.data(), columns, simplex.primalColumnSolution());
-            std::copy_n(scaledAnswer.data() + columns, rows, simplex.dualRowSolution());
-            simplex.copyinStatus(basis.data());
-            simplex.setProblemStatus(0);
-        }
+        ClpSimplex unscaled(simplex);
+        unscaled.scaling(0);
+        unscaled.primal(1);  // a values pass: from the answer in hand
+        if (unscaled.status() != 0) return 0;
+        unscaled.scaling(simplex.scalingFlag());
+        simplex = unscaled;
         return 0;
     }
 };

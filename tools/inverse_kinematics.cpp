@@ -312,8 +312,11 @@ void InverseKinematicsSolver::fillLoopGaps(bool withJacobian) {
 
 InverseKinematicsSolver::Score InverseKinematicsSolver::evaluate(const InverseKinematicsTargets& targets,
                                                                 const Eigen::VectorXd& q, bool withJacobian) {
-    calcPositionKinematics(model_, data_, q);
-    lastQ_ = q;
+    // A trial is judged at the pose its loop closing has just computed.
+    if (lastQ_.size() != q.size() || lastQ_ != q) {
+        calcPositionKinematics(model_, data_, q);
+        lastQ_ = q;
+    }
     if (withJacobian) {
         calcJointMotions(jacobianLinks_);
         A_.setZero();
