@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "sinew/core/data.hpp"
@@ -249,6 +250,28 @@ std::vector<std::string> listVirtualLinkResidualColumns(const Model& model) {
     return columns;
 }
 
+// The demo's settings for the shipped kick: tensions bounded below only (a 1e6 N cap), coordinates at 6 Hz.
+TensionMotionOptions makeKickOptions(const Model& model, const std::string& method,
+                                     double start = -std::numeric_limits<double>::infinity(),
+                                     double end = std::numeric_limits<double>::infinity()) {
+    TensionMotionOptions options;
+    options.analysis.maxTension = Eigen::VectorXd::Constant(model.getNumWires(), 1e6);
+    options.analysis.method = method;
+    options.lowpassCutoffHz = 6;
+    options.startTime = start;
+    options.finalTime = end;
+    return options;
+}
+
+// Every frame's virtual links (the report's columns nodeRows) balanced to 1e-6 N.
+void expectNodesBalanced(const TensionMotionResult& result, const std::vector<std::string>& nodeRows) {
+    const std::vector<int> nodeColumns = matchStorageColumns(result.report, nodeRows, ExtraColumns::Allow);
+    for (std::size_t f = 0; f < result.report.rows.size(); ++f)
+        for (std::size_t k = 0; k < nodeColumns.size(); ++k)
+            EXPECT_LE(std::abs(result.report.rows[f][static_cast<std::size_t>(nodeColumns[k])]), 1e-6)
+                << "t = " << result.report.times[f] << " " << nodeRows[k];
+}
+
 // The shipped kick's strike as the demo runs it (models/whole_body/kick_11_01.mot on the subject's model,
 // tensions bounded below only, 6 Hz): on every frame both methods keep the virtual links in equilibrium and,
 // the support foot being down, the body's force balanced by the ground (to 1e-6 N and 1e-6 of the weight);
@@ -261,11 +284,7 @@ TEST(TensionContact, TheKicksStrikeBalancesItsVirtualLinksAndTheBodysForce) {
     const StorageTable motion = readStorageFile(test::sourcePath("models/whole_body/kick_11_01.mot"));
     const std::vector<std::string> nodeRows = listVirtualLinkResidualColumns(model);
     ASSERT_FALSE(nodeRows.empty());
-    TensionMotionOptions options;
-    options.analysis.maxTension = Eigen::VectorXd::Constant(model.getNumWires(), 1e6);
-    options.lowpassCutoffHz = 6;
-    options.startTime = 3.40;
-    options.finalTime = 3.44;
+    TensionMotionOptions options = makeKickOptions(model, "lp", 3.40, 3.44);
     const double weight = calcTotalMass(model) * model.getGravity().norm();
     TensionMotionResult results[2];
     for (const int qp : {0, 1}) {
@@ -274,16 +293,12 @@ TEST(TensionContact, TheKicksStrikeBalancesItsVirtualLinksAndTheBodysForce) {
         const TensionMotionResult& result = results[qp];
         ASSERT_EQ(result.report.rows.size(), 5u);
         const int status = matchStorageColumns(result.report, {"status"}, ExtraColumns::Allow)[0];
-        const std::vector<int> nodeColumns = matchStorageColumns(result.report, nodeRows, ExtraColumns::Allow);
         const int rootForce = matchStorageColumns(result.contact, {"root_force_residual"}, ExtraColumns::Allow)[0];
+        expectNodesBalanced(result, nodeRows);
         for (std::size_t f = 0; f < result.report.rows.size(); ++f) {
-            const std::vector<double>& row = result.report.rows[f];
             if (qp) {
-                EXPECT_EQ(row[static_cast<std::size_t>(status)], 0) << "qp frame " << f;
+                EXPECT_EQ(result.report.rows[f][static_cast<std::size_t>(status)], 0) << "qp frame " << f;
             }
-            for (std::size_t k = 0; k < nodeColumns.size(); ++k)
-                EXPECT_LE(std::abs(row[static_cast<std::size_t>(nodeColumns[k])]), 1e-6)
-                    << options.analysis.method << " frame " << f << " " << nodeRows[k];
             EXPECT_LE(result.contact.rows[f][static_cast<std::size_t>(rootForce)], 1e-6 * weight)
                 << options.analysis.method << " frame " << f;
         }
@@ -299,22 +314,12 @@ TEST(TensionContact, TheKicksSplineStartBalancesItsVirtualLinks) {
     const Model model = readModelFile(test::sourcePath("models/whole_body/whole_body_subject11.yaml"));
     const StorageTable motion = readStorageFile(test::sourcePath("models/whole_body/kick_11_01.mot"));
     const std::vector<std::string> nodeRows = listVirtualLinkResidualColumns(model);
-    TensionMotionOptions options;
-    options.analysis.maxTension = Eigen::VectorXd::Constant(model.getNumWires(), 1e6);
-    options.analysis.method = "qp";
-    options.lowpassCutoffHz = 6;
-    options.startTime = 0.06;
-    options.finalTime = 0.10;
-    const TensionMotionResult result = runTensionAnalysis(model, motion, nullptr, options);
+    const TensionMotionResult result = runTensionAnalysis(model, motion, nullptr, makeKickOptions(model, "qp", 0.06, 0.10));
     ASSERT_EQ(result.report.rows.size(), 6u);
-    const std::vector<int> nodeColumns = matchStorageColumns(result.report, nodeRows, ExtraColumns::Allow);
     const int status = matchStorageColumns(result.report, {"status"}, ExtraColumns::Allow)[0];
-    for (std::size_t f = 0; f < result.report.rows.size(); ++f) {
-        const std::vector<double>& row = result.report.rows[f];
-        EXPECT_EQ(row[static_cast<std::size_t>(status)], 0) << "frame " << f;
-        for (std::size_t k = 0; k < nodeColumns.size(); ++k)
-            EXPECT_LE(std::abs(row[static_cast<std::size_t>(nodeColumns[k])]), 1e-6) << "frame " << f << " " << nodeRows[k];
-    }
+    for (std::size_t f = 0; f < result.report.rows.size(); ++f)
+        EXPECT_EQ(result.report.rows[f][static_cast<std::size_t>(status)], 0) << "frame " << f;
+    expectNodesBalanced(result, nodeRows);
 }
 
 // The LP over the whole shipped kick (598 frames, 107 of them infeasible, some of whose least-cost answers hold
@@ -324,20 +329,11 @@ TEST(TensionContact, TheKicksSplineStartBalancesItsVirtualLinks) {
 TEST(TensionContact, TheKicksLpBalancesItsVirtualLinksOnEveryFrame) {
     const Model model = readModelFile(test::sourcePath("models/whole_body/whole_body_subject11.yaml"));
     const StorageTable motion = readStorageFile(test::sourcePath("models/whole_body/kick_11_01.mot"));
-    const std::vector<std::string> nodeRows = listVirtualLinkResidualColumns(model);
-    TensionMotionOptions options;
-    options.analysis.maxTension = Eigen::VectorXd::Constant(model.getNumWires(), 1e6);
-    options.analysis.method = "lp";
-    options.lowpassCutoffHz = 6;
-    const TensionMotionResult result = runTensionAnalysis(model, motion, nullptr, options);
+    const TensionMotionResult result = runTensionAnalysis(model, motion, nullptr, makeKickOptions(model, "lp"));
     ASSERT_EQ(result.report.rows.size(), motion.times.size());
     EXPECT_EQ(result.failedFrames, 0);
     EXPECT_GT(result.infeasibleFrames, 0);  // the frames whose answers reach the cap
-    const std::vector<int> nodeColumns = matchStorageColumns(result.report, nodeRows, ExtraColumns::Allow);
-    for (std::size_t f = 0; f < result.report.rows.size(); ++f)
-        for (std::size_t k = 0; k < nodeColumns.size(); ++k)
-            EXPECT_LE(std::abs(result.report.rows[f][static_cast<std::size_t>(nodeColumns[k])]), 1e-6)
-                << "t = " << result.report.times[f] << " " << nodeRows[k];
+    expectNodesBalanced(result, listVirtualLinkResidualColumns(model));
 }
 
 }  // namespace
