@@ -213,6 +213,7 @@ struct LpSolver::Backend {
         unscaled.primal(1);  // a values pass: from the answer in hand
         if (unscaled.status() != 0) return 0;
         unscaled.scaling(simplex.scalingFlag());
+        unscaled.setNumberIterations(simplex.numberIterations() + unscaled.numberIterations());
         simplex = unscaled;
         return 0;
     }
@@ -262,7 +263,7 @@ void LpSolver::solve(const DistributionProblem& problem, DistributionResult& res
             } else {
                 startFromSlacksAndFreeColumns(problem, backend_->simplex, backend_->rowTaken);
                 backend_->simplex.dual();
-                status = backend_->simplex.status();
+                status = backend_->finishWithinBounds(problem);
                 result.iterations += backend_->simplex.numberIterations();
                 // Within Clp's tolerances of feasible and still refused from the cold start: the frame needs
                 // the tiny reserves phase 1 found, and says so with them (its x is phase 1's).
