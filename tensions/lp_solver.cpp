@@ -202,10 +202,10 @@ struct LpSolver::Backend {
     int finishWithinBounds(const DistributionProblem& problem) {
         constexpr double kClampShift = 1e-9;
         if (simplex.status() != 0) return simplex.status();
-        const double* solution = simplex.primalColumnSolution();
-        Eigen::VectorXd clampMove = Eigen::VectorXd::Zero(problem.getNumVariables());
-        for (int j = 0; j < problem.getNumBounded(); ++j)
-            clampMove[j] = std::clamp(solution[j], problem.lower[j], problem.upper[j]) - solution[j];
+        const Eigen::Map<const Eigen::VectorXd> answer(simplex.primalColumnSolution(), problem.getNumVariables());
+        Eigen::VectorXd clampMove = answer;
+        clampToBounds(problem, clampMove);
+        clampMove -= answer;
         const double size = std::max(1.0, problem.target.cwiseAbs().maxCoeff());
         if (clampMove.isZero() || (problem.A * clampMove).cwiseAbs().maxCoeff() <= kClampShift * size) return 0;
         ClpSimplex unscaled(simplex);
