@@ -97,8 +97,10 @@ bool readPhaseOne(const DistributionProblem& problem, const LpArrays& arrays, co
 
 // The phase-1 LP: min sum(c_i (s+ + s-)) over x within its bounds and s+, s- >= 0 with
 // tau - tolerance <= A x + s+ - s- <= tau + tolerance. Returns false when Clp fails; the reserve is s+ - s-.
+// warmBasis (may be null): Clp's status array of an earlier phase 1 of the same size to start from (a
+// motion's infeasible frames come in runs); given back with this one's optimal basis, or emptied.
 bool solvePhaseOne(const DistributionProblem& problem, const LpArrays& arrays, Eigen::VectorXd& x,
-                          Eigen::VectorXd& reserve, int& iterations) {
+                   Eigen::VectorXd& reserve, int& iterations, std::vector<unsigned char>* warmBasis = nullptr) {
     const int rows = problem.getNumRows(), columns = problem.getNumVariables();
     const Eigen::SparseMatrix<double>& A = problem.A;
     std::vector<int> starts(A.outerIndexPtr(), A.outerIndexPtr() + columns + 1);
@@ -117,15 +119,37 @@ bool solvePhaseOne(const DistributionProblem& problem, const LpArrays& arrays, E
         }
     }
     ClpSimplex simplex;
-    simplex.setLogLevel(0);
-    simplex.loadProblem(columns + 2 * rows, rows, starts.data(), indices.data(), values.data(), columnLower.data(),
-                        columnUpper.data(), cost.data(), arrays.rowLower.data(), arrays.rowUpper.data());
+    const auto load = [&] {
+        simplex = ClpSimplex();
+        simplex.setLogLevel(0);
+        simplex.loadProblem(columns + 2 * rows, rows, starts.data(), indices.data(), values.data(), columnLower.data(),
+                            columnUpper.data(), cost.data(), arrays.rowLower.data(), arrays.rowUpper.data());
+    };
+    const std::size_t statuses = static_cast<std::size_t>(columns + 3 * rows);
+    const auto succeeded = [&] {
+        if (simplex.status() != 0 || !readPhaseOne(problem, arrays, simplex, x, reserve)) return false;
+        if (warmBasis) warmBasis->assign(simplex.statusArray(), simplex.statusArray() + statuses);
+        return true;
+    };
+    // From the last phase 1's basis the kick's runs of infeasible frames take a median of 60 pivots against
+    // 300 cold, but a few stall on degeneracy (up to 6,000): past `rows` pivots the cold start takes over,
+    // in a fresh simplex (a capped Clp's perturbed state is no start, see LpSolver::Backend::run).
+    if (warmBasis && warmBasis->size() == statuses) {
+        load();
+        simplex.copyinStatus(warmBasis->data());
+        simplex.setMaximumIterations(rows);
+        simplex.dual();
+        iterations += simplex.numberIterations();
+        if (succeeded()) return true;
+    }
+    if (warmBasis) warmBasis->clear();
+    load();
     std::vector<char> rowTaken;
     startFromSlacksAndFreeColumns(problem, simplex, rowTaken);  // x's columns keep their indices
     simplex.dual();
     if (simplex.status() != 0) simplex.primal();
     iterations += simplex.numberIterations();
-    if (simplex.status() == 0 && readPhaseOne(problem, arrays, simplex, x, reserve)) return true;
+    if (succeeded()) return true;
     // Clp has called a phase 1 optimal whose reserves exceed those of x = 0 (1e8 N m against the kick's
     // few hundred, with the free loop columns and unbounded contact forces): again from the slack basis,
     // without scaling, by the primal simplex.
@@ -133,7 +157,7 @@ bool solvePhaseOne(const DistributionProblem& problem, const LpArrays& arrays, E
     simplex.allSlackBasis(true);
     simplex.primal();
     iterations += simplex.numberIterations();
-    return simplex.status() == 0 && readPhaseOne(problem, arrays, simplex, x, reserve);
+    return succeeded();
 }
 
 }  // namespace
@@ -152,6 +176,8 @@ struct LpSolver::Backend {
     LpArrays arrays;
     std::vector<unsigned char> basis;  // the previous frame's, while the problem is reloaded
     std::vector<char> rowTaken;        // startFromSlacksAndFreeColumns's workspace
+    std::vector<unsigned char> phaseOneBasis;  // the last phase 1's optimal basis
+    bool lastInfeasible = false;               // the last frame's status
 
     Backend() { simplex.setLogLevel(0); }
 
@@ -244,23 +270,31 @@ void LpSolver::solve(const DistributionProblem& problem, DistributionResult& res
     validateDistributionProblem(problem);
     const int rows = problem.getNumRows(), columns = problem.getNumVariables();
     backend_->load(problem);
-    int status = backend_->run(problem);
-    result.iterations = backend_->simplex.numberIterations();
+    result.iterations = 0;
     result.usedIpopt = false;
     result.reserve.setZero(rows);
     result.multipliers.setZero(rows);
-    result.x.setZero(columns);
     result.status = DistributionStatus::Failed;
-    if (status == 1) {
+    const double scale = std::max(1.0, problem.target.cwiseAbs().maxCoeff());
+    const auto needsReserves = [&](const Eigen::VectorXd& reserve) {
+        return reserve.cwiseAbs().maxCoeff() > 1e-6 * scale;  // Clp's feasibility tolerance is 1e-7
+    };
+    Eigen::VectorXd reserve;
+    // After an infeasible frame, phase 1 goes first, warm from that frame's: it proves the next of a run of
+    // infeasible frames so in fewer pivots than the dual simplex takes to find it out.
+    bool infeasible = backend_->lastInfeasible &&
+                      solvePhaseOne(problem, backend_->arrays, result.x, reserve, result.iterations, &backend_->phaseOneBasis) &&
+                      needsReserves(reserve);
+    int status = 1;
+    if (!infeasible) {
+        result.x.setZero(columns);
+        status = backend_->run(problem);
+        result.iterations += backend_->simplex.numberIterations();
         // Confirm with phase 1: a warm-started dual simplex may call a nearly infeasible frame infeasible.
-        Eigen::VectorXd reserve;
-        if (solvePhaseOne(problem, backend_->arrays, result.x, reserve, result.iterations)) {
-            const double scale = std::max(1.0, problem.target.cwiseAbs().maxCoeff());
-            if (reserve.cwiseAbs().maxCoeff() > 1e-6 * scale) {  // Clp's feasibility tolerance is 1e-7
-                result.status = DistributionStatus::Infeasible;
-                result.reserve = reserve;
-                solveWithReserves(problem, reserve, result);
-            } else {
+        if (status == 1 &&
+            solvePhaseOne(problem, backend_->arrays, result.x, reserve, result.iterations, &backend_->phaseOneBasis)) {
+            infeasible = needsReserves(reserve);
+            if (!infeasible) {
                 startFromSlacksAndFreeColumns(problem, backend_->simplex, backend_->rowTaken);
                 backend_->simplex.dual();
                 status = backend_->finishWithinBounds(problem);
@@ -274,6 +308,12 @@ void LpSolver::solve(const DistributionProblem& problem, DistributionResult& res
             }
         }
     }
+    if (infeasible) {
+        result.status = DistributionStatus::Infeasible;
+        result.reserve = reserve;
+        solveWithReserves(problem, reserve, result);
+    }
+    backend_->lastInfeasible = infeasible;
     if (status == 0) {
         result.status = DistributionStatus::Optimal;
         result.x = Eigen::Map<const Eigen::VectorXd>(backend_->simplex.primalColumnSolution(), columns);

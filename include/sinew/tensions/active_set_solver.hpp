@@ -80,9 +80,12 @@ private:
     static constexpr int kEqualityPasses = 3;       // shifts of the equality rows' targets (solveDual)
     static constexpr int kEqualityPassIterations = 10;  // Newton steps a shift may take
     static constexpr double kEqualityRoundoff = 1e-14;  // relative to the rows' size
-    void solveDual(const DistributionProblem& problem, DistributionResult& result, int maxIterations = -1);
+    // sameProblem: `problem` is the one the last call solved, so its set-up (the free columns' QR, Sigma)
+    // still holds, and the Newton matrix's factor where no up/down-date has touched it.
+    void solveDual(const DistributionProblem& problem, DistributionResult& result, int maxIterations = -1,
+                   bool sameProblem = false);
     bool runNewton(const DistributionProblem& problem, double tauScale, int limit, int& iterations, bool& fullStep,
-                   bool& factorValid, double& relativeGradient);
+                   double& relativeGradient);
     bool shiftEqualityTargets(const DistributionProblem& problem, double tauScale);
     void writeDualResult(const DistributionProblem& problem, bool converged, int iterations, DistributionResult& result);
     void refineProximally(const DistributionProblem& problem, DistributionResult& result);
@@ -112,6 +115,8 @@ private:
     Eigen::VectorXd x_;                 // (numBounded)
     std::vector<Regime> regime_;        // (numBounded) at y
     std::vector<Regime> factored_;      // (numBounded) the regimes the factor holds
+    bool factorValid_ = false;          // L_ factors this problem's Newton matrix at factored_
+    int factorUpdates_ = 0;             // up/down-dates since L_ was factorised
     std::vector<Regime> stepped_;       // (numBounded) the regimes at the last step's start
     Eigen::MatrixXd K_;                 // (rows x rows) Newton matrix before reduction
     Eigen::MatrixXd L_;                 // (reduced) its Cholesky factor, lower
