@@ -66,18 +66,29 @@ TEST(LpSolver, TorqueErrorOfTheQpIsBelowTheLpsOnNoisyTargets) {
     EXPECT_GE(compared, 6);
 }
 
-TEST(LpSolver, WarmStartsGiveTheColdAnswer) {
+// A motion's problems: a random base with 20 rows and 70 wires, its moment arms varying smoothly frame to
+// frame, tau made by tensions of 100 to 300 N (times targetScale).
+DistributionProblem makeMotionBase(int numEquality) {
     test::RandomProblemOptions o;
-    o.rows = 20, o.wires = 70, o.numFree = 3, o.numEquality = 2, o.duplicateWires = 2, o.zeroWires = 2;
-    const DistributionProblem base = test::makeRandomProblem(o);
+    o.rows = 20, o.wires = 70, o.numFree = 3, o.numEquality = numEquality, o.duplicateWires = 2, o.zeroWires = 2;
+    return test::makeRandomProblem(o);
+}
+
+DistributionProblem makeMotionFrame(const DistributionProblem& base, int frame, double targetScale) {
+    DistributionProblem p = base;
+    for (int k = 0; k < p.A.nonZeros(); ++k) p.A.valuePtr()[k] *= 1 + 0.02 * std::sin(0.3 * frame + k);
+    const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(p.getNumVariables(), 100, 300 + 5 * frame);
+    p.target = p.A * x * targetScale;
+    return p;
+}
+
+TEST(LpSolver, WarmStartsGiveTheColdAnswer) {
+    const DistributionProblem base = makeMotionBase(2);
     LpSolver warm;
     DistributionResult warmResult, coldResult;
     int warmIterations = 0, coldIterations = 0;
     for (int frame = 0; frame < 20; ++frame) {
-        DistributionProblem p = base;
-        for (int k = 0; k < p.A.nonZeros(); ++k) p.A.valuePtr()[k] *= 1 + 0.02 * std::sin(0.3 * frame + k);
-        const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(p.getNumVariables(), 100, 300 + 5 * frame);
-        p.target = p.A * x;
+        const DistributionProblem p = makeMotionFrame(base, frame, 1.0);
         warm.solve(p, warmResult);
         LpSolver cold;
         cold.solve(p, coldResult);
@@ -95,18 +106,14 @@ TEST(LpSolver, WarmStartsGiveTheColdAnswer) {
 // row at 1) are those of a cold solver, in a fraction of the pivots; the feasible frame after the run is
 // optimal again.
 TEST(LpSolver, WarmInfeasibleFramesNeedTheColdReserves) {
-    test::RandomProblemOptions o;
-    o.rows = 20, o.wires = 70, o.numFree = 3, o.numEquality = 0, o.duplicateWires = 2, o.zeroWires = 2;
-    const DistributionProblem base = test::makeRandomProblem(o);
+    const DistributionProblem base = makeMotionBase(0);
     LpSolver warm;
     DistributionResult warmResult, coldResult;
     int warmIterations = 0, coldIterations = 0;
     for (int frame = 0; frame <= 20; ++frame) {
-        DistributionProblem p = base;
-        for (int k = 0; k < p.A.nonZeros(); ++k) p.A.valuePtr()[k] *= 1 + 0.02 * std::sin(0.3 * frame + k);
-        const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(p.getNumVariables(), 100, 300 + 5 * frame);
         const bool lastFrame = frame == 20;
-        p.target = p.A * x * (lastFrame ? 1.0 : 3.0);  // 3x: beyond what the bounded tensions reach
+        // 3x: beyond what the bounded tensions reach
+        const DistributionProblem p = makeMotionFrame(base, frame, lastFrame ? 1.0 : 3.0);
         warm.solve(p, warmResult);
         LpSolver cold;
         cold.solve(p, coldResult);
