@@ -131,8 +131,8 @@ bool solvePhaseOne(const DistributionProblem& problem, const LpArrays& arrays, E
         if (warmBasis) warmBasis->assign(simplex.statusArray(), simplex.statusArray() + statuses);
         return true;
     };
-    // From the last phase 1's basis the kick's runs of infeasible frames take a median of 60 pivots against
-    // 300 cold, but a few stall on degeneracy (up to 6,000): past `rows` pivots the cold start takes over,
+    // From the last phase 1's basis the kick's runs of infeasible frames take a median of 71 pivots against
+    // 306 cold, but a few stall on degeneracy (up to 6,000): past `rows` pivots the cold start takes over,
     // in a fresh simplex (a capped Clp's perturbed state is no start, see LpSolver::Backend::run).
     if (warmBasis && warmBasis->size() == statuses) {
         load();
