@@ -404,10 +404,14 @@ Eigen::VectorXd InverseKinematicsSolver::solveKkt(double damping, const std::vec
     }
     const Eigen::VectorXd free = cholesky.solve(b);
     if (G.rows() == 0) return free;
-    const Eigen::MatrixXd HinvGt = cholesky.solve(G.transpose());
-    const Eigen::MatrixXd S = G * HinvGt;
+    // With H = L L^T and W = L^-1 G^T: S = W^T W, and H^-1 G^T lambda = L^-T (W lambda). One triangular
+    // solve with the loops' columns instead of two (H^-1 G^T), which took 11 % of the whole body's steps.
+    const Eigen::MatrixXd W = cholesky.matrixL().solve(G.transpose());
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(G.rows(), G.rows());
+    S.selfadjointView<Eigen::Lower>().rankUpdate(W.transpose());
+    S.triangularView<Eigen::StrictlyUpper>() = S.transpose();
     multipliers_ = S.completeOrthogonalDecomposition().solve(G * free - e);
-    return free - HinvGt * multipliers_;
+    return free - cholesky.matrixU().solve(W * multipliers_);
 }
 
 // The free unknowns that a target or loop observes at the last evaluation (the kick's 120 of 156), with A's
