@@ -408,8 +408,7 @@ Eigen::VectorXd InverseKinematicsSolver::solveKkt(double damping, const std::vec
     // solve with the loops' columns instead of two (H^-1 G^T), which took 11 % of the whole body's steps.
     const Eigen::MatrixXd W = cholesky.matrixL().solve(G.transpose());
     Eigen::MatrixXd S = Eigen::MatrixXd::Zero(G.rows(), G.rows());
-    S.selfadjointView<Eigen::Lower>().rankUpdate(W.transpose());
-    S.triangularView<Eigen::StrictlyUpper>() = S.transpose();
+    addGaussNewtonHessian(S, W, 1);
     multipliers_ = S.completeOrthogonalDecomposition().solve(G * free - e);
     return free - cholesky.matrixU().solve(W * multipliers_);
 }
