@@ -93,6 +93,11 @@ int Model::findWireIndex(const std::string& name) const {
     return kNotFound;
 }
 
+std::vector<int> Model::getSupportLinks(const Wire& wire) const {
+    const auto first = supportLinks_.begin() + wire.firstSupportLink;
+    return {first, first + wire.numSupportLinks};
+}
+
 int Model::findCoordinateIndex(const std::string& name) const {
     for (std::size_t i = 0; i < coordinates_.size(); ++i)
         if (coordinates_[i].name == name) return static_cast<int>(i);

@@ -338,7 +338,7 @@ struct ModelBuilder::Compilation {
     void buildWire(const WireSpec& ws);
     void addWirePoint(const WireSpec& ws, std::size_t k, const std::string& label, Wire& wire);
     void addWireWrap(const WireWrapSpec& wr, const std::string& where, const std::string& label, Wire& wire) const;
-    void findSupportLinks(Wire& wire) const;
+    void findSupportLinks(Wire& wire);
 
     const ModelBuilder& specs;
     Model model;
@@ -775,15 +775,14 @@ void ModelBuilder::Compilation::addWireWrap(const WireWrapSpec& wr, const std::s
 // The links between the wire's anchors (points, wrap objects, side sites) and the root, tip to base (a parent's
 // index is below its children's), and how many lie below the anchors' lowest common link: going tip to base,
 // that is the first link whose subtree holds every anchor.
-void ModelBuilder::Compilation::findSupportLinks(Wire& wire) const {
+void ModelBuilder::Compilation::findSupportLinks(Wire& wire) {
     std::vector<int> anchors;
     for (int k = 0; k < wire.numPoints; ++k) anchors.push_back(model.wirePoints_[static_cast<std::size_t>(wire.firstPoint + k)].link);
     for (const WireWrap& wrap : wire.wraps) {
         anchors.push_back(model.wrapObjects_[static_cast<std::size_t>(wrap.object)].link);
         if (wrap.hasSideSite) anchors.push_back(wrap.sideSiteLink);
     }
-    std::vector<int>& support = wire.supportLinks;
-    support.clear();
+    std::vector<int> support;
     std::vector<int> anchorsBelow(model.joints_.size(), -1);  // per link: anchors in its subtree; -1 off the support
     for (const int anchor : anchors)
         for (int l = anchor; l != kGround && anchorsBelow[static_cast<std::size_t>(l)] < 0;
@@ -804,6 +803,9 @@ void ModelBuilder::Compilation::findSupportLinks(Wire& wire) const {
         const int parent = model.joints_[link].parent;
         if (parent != kGround) anchorsBelow[static_cast<std::size_t>(parent)] += anchorsBelow[link];
     }
+    wire.firstSupportLink = static_cast<int>(model.supportLinks_.size());
+    wire.numSupportLinks = static_cast<int>(support.size());
+    model.supportLinks_.insert(model.supportLinks_.end(), support.begin(), support.end());
 }
 
 void ModelBuilder::buildContacts(Model& model) const {

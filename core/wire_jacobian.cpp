@@ -72,9 +72,10 @@ void calcWireJacobianRow(const Model& model, Data& data, int w, Set&& set, Add&&
     // Only the span links and their top (the lowest common link, which takes the last sum) are touched, so
     // a wire costs its span, not its depth in the tree. A support link lies among them iff its index is at
     // least the top's (parents' indices are lower).
-    const std::size_t touched = std::min(wire.supportLinks.size(), static_cast<std::size_t>(wire.numSpanLinks) + 1);
-    const int top = wire.supportLinks.empty() ? kGround : wire.supportLinks[touched - 1];
-    for (std::size_t i = 0; i < touched; ++i) W[static_cast<std::size_t>(wire.supportLinks[i])].setZero();
+    const int* links = model.getSupportLinks().data() + wire.firstSupportLink;
+    const int touched = std::min(wire.numSupportLinks, wire.numSpanLinks + 1);
+    const int top = touched == 0 ? kGround : links[touched - 1];
+    for (int i = 0; i < touched; ++i) W[static_cast<std::size_t>(links[i])].setZero();
     forEachWirePoint(model, data, wire, w, [&](int link, const Eigen::Vector3d& p_G, const Eigen::Vector3d& dLdp_G) {
         if (link < top) return;  // above the span: moves with every anchor
         SpatialVector& W_link = W[static_cast<std::size_t>(link)];
@@ -82,7 +83,7 @@ void calcWireJacobianRow(const Model& model, Data& data, int w, Set&& set, Add&&
         W_link.tail<3>() += dLdp_G;
     });
     for (int i = 0; i < wire.numSpanLinks; ++i) {
-        const int link = wire.supportLinks[static_cast<std::size_t>(i)];
+        const int link = links[i];
         const Joint& joint = model.getJoint(link);
         const SpatialVector& W_link = W[static_cast<std::size_t>(link)];
         double column[6];
@@ -122,7 +123,7 @@ Eigen::SparseMatrix<double> makeWireJacobianTransposePattern(const Model& model)
     for (int w = 0; w < model.getNumWires(); ++w) {
         const Wire& wire = model.getWire(w);
         for (int i = 0; i < wire.numSpanLinks; ++i) {
-            const Joint& joint = model.getJoint(wire.supportLinks[static_cast<std::size_t>(i)]);
+            const Joint& joint = model.getJoint(model.getSupportLinks()[static_cast<std::size_t>(wire.firstSupportLink + i)]);
             for (int c = 0; c < joint.nu; ++c) entries.emplace_back(joint.uStart + c, w, 0.0);
         }
         for (const WirePointMotion& m : wire.motions) entries.emplace_back(m.u, w, 0.0);
@@ -144,7 +145,8 @@ void calcWireJacobianTranspose(const Model& model, Data& data, Eigen::SparseMatr
     for (int w = 0; w < model.getNumWires(); ++w) {
         const int* first = rows + columnStart[w];
         const int* last = rows + columnStart[w + 1];
-        std::fill(values + columnStart[w], values + columnStart[w + 1], 0.0);
+        // The span joints' entries are overwritten; only a moving point's own coordinate is added to.
+        if (!model.getWire(w).motions.empty()) std::fill(values + columnStart[w], values + columnStart[w + 1], 0.0);
         // The pattern holds every speed the row can touch; the lookups are within one wire's few entries.
         auto entry = [&](int u) -> double& {
             const int* it = std::lower_bound(first, last, u);
@@ -158,9 +160,17 @@ void calcWireJacobianTranspose(const Model& model, Data& data, Eigen::SparseMatr
             for (const int* it = first; it != last; ++it) values[it - rows] = data.wireLengthGradient(row, *it);
             continue;
         }
-        // A joint's speeds are consecutive rows of the column.
+        // A joint's speeds are consecutive rows of the column. A ball's three are written inline: a copy of
+        // run-time length compiles to a memmove call per joint, 8 % of the pass on the whole body.
         calcWireJacobianRow(
-            model, data, w, [&](int uStart, int nu, const double* block) { std::copy(block, block + nu, &entry(uStart)); },
+            model, data, w,
+            [&](int uStart, int nu, const double* block) {
+                double* column = &entry(uStart);
+                if (nu == 3)
+                    column[0] = block[0], column[1] = block[1], column[2] = block[2];
+                else
+                    std::copy(block, block + nu, column);
+            },
             [&](int u, double value) { entry(u) += value; });
     }
 }

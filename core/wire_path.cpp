@@ -277,7 +277,7 @@ void calcLengthGradientNumerically(const Model& model, Data& data, int w) {
         if (std::abs(forward - backward) > 1e-2) return std::abs(forward) < std::abs(backward) ? forward : backward;
         return 0.5 * (forward + backward);
     };
-    const auto spanBegin = wire.supportLinks.begin(), spanEnd = spanBegin + wire.numSpanLinks;
+    const auto spanBegin = model.getSupportLinks().begin() + wire.firstSupportLink, spanEnd = spanBegin + wire.numSpanLinks;
     for (auto it = spanBegin; it != spanEnd; ++it) {
         const int link = *it;
         const Joint& joint = model.getJoint(link);

@@ -168,7 +168,7 @@ TEST(WrapMuJoCo, SideSiteMovesWithItsOwnLink) {
     const int rotor = onRotor.findLinkIndex("rotor");
     EXPECT_EQ(onRotor.getWire(0).wraps[0].sideSiteLink, rotor);
     EXPECT_EQ(onBase.getWire(0).wraps[0].sideSiteLink, onBase.findLinkIndex("base"));
-    EXPECT_EQ(onRotor.getWire(0).supportLinks, (std::vector<int>{rotor, onRotor.findLinkIndex("base")}));
+    EXPECT_EQ(onRotor.getSupportLinks(onRotor.getWire(0)), (std::vector<int>{rotor, onRotor.findLinkIndex("base")}));
     const SymmetricWrap over = calcSymmetricWrap(0.5, true), under = calcSymmetricWrap(0.5, false);
     Data data(onRotor), fixed(onBase);
     Eigen::MatrixXd J(1, 1);

@@ -196,10 +196,13 @@ struct Wire {
     std::vector<WirePointCondition> conditions;
     std::vector<WirePointMotion> motions;  // ordered by point
     std::vector<WireWrap> wraps;           // in the order OpenSim applies them
-    // Links whose joints move at least one of the wire's points, wrap objects or side sites, children before
-    // parents; Jacobian and force passes visit only these (derived at build).
-    std::vector<int> supportLinks;
-    // The first numSpanLinks of supportLinks lie below the lowest link that carries all of those anchors: the
+    // The support links: the links whose joints move at least one of the wire's points, wrap objects or side
+    // sites, children before parents, at Model::getSupportLinks()[firstSupportLink ...]; Jacobian and force
+    // passes visit only these (derived at build). All wires' lie in one array because the Jacobian's sweep
+    // reads them wire after wire, and a heap block per wire cost it a cache miss each (docs/performance.md).
+    int firstSupportLink = 0;
+    int numSupportLinks = 0;
+    // The first numSpanLinks support links lie below the lowest link that carries all of those anchors: the
     // joints that change the wire's length. That link's joint and those above it move every anchor rigidly,
     // so their columns of J are zero (derived at build).
     int numSpanLinks = 0;
@@ -239,6 +242,9 @@ public:
     const std::vector<Loop>& getLoops() const { return loops_; }
     const std::vector<CoordinateCoupler>& getCouplers() const { return couplers_; }
     const std::vector<WirePoint>& getWirePoints() const { return wirePoints_; }  // all wires' points, flat
+    const std::vector<int>& getSupportLinks() const { return supportLinks_; }   // all wires' support links, flat
+    // Wire w's support links (Wire::firstSupportLink ...), as a vector for callers off the hot paths.
+    std::vector<int> getSupportLinks(const Wire& wire) const;
     const std::vector<WrapObject>& getWrapObjects() const { return wrapObjects_; }
     const std::vector<Contact>& getContacts() const { return contacts_; }  // the links the model names as feet
     const ForceElements& getForceElements() const { return forceElements_; }  // forces other than wires
@@ -262,6 +268,7 @@ private:
     std::vector<CoordinateCoupler> couplers_;
     std::vector<Wire> wires_;
     std::vector<WirePoint> wirePoints_;
+    std::vector<int> supportLinks_;
     std::vector<WrapObject> wrapObjects_;
     std::vector<Contact> contacts_;
     ForceElements forceElements_;
