@@ -146,6 +146,8 @@ InverseKinematicsSolver::InverseKinematicsSolver(const Model& model, std::vector
     targetLinks.insert(targetLinks.end(), taskLink_.begin(), taskLink_.end());
     jacobianLinks_ = findJointsMoving(model, targetLinks);
     loopChainLinks_ = findJointsMoving(model, loopLinks);
+    // data_.q is the pose of the last evaluation; a new Data holds the default q without its kinematics.
+    calcPositionKinematics(model, data_, model.getDefaultQ());
 }
 
 // Where a speed u's effect goes among the free unknowns, and by what factor: itself for a free speed, the
@@ -159,7 +161,7 @@ std::pair<int, double> InverseKinematicsSolver::findFreeColumn(int u) const {
     const CoordinateCoupler& coupler = model_.getCouplers()[static_cast<std::size_t>(k)];
     const int independent = freeColumn_[static_cast<std::size_t>(coupler.independentU)];
     if (independent < 0) return {-1, 0};
-    return {independent, coupler.scaleFactor * coupler.function.calcDerivative(lastQ_[coupler.independentQ], 1)};
+    return {independent, coupler.scaleFactor * coupler.function.calcDerivative(data_.q[coupler.independentQ], 1)};
 }
 
 void InverseKinematicsSolver::calcJointMotions(const std::vector<int>& links) {
@@ -313,10 +315,7 @@ void InverseKinematicsSolver::fillLoopGaps(bool withJacobian) {
 InverseKinematicsSolver::Score InverseKinematicsSolver::evaluate(const InverseKinematicsTargets& targets,
                                                                 const Eigen::VectorXd& q, bool withJacobian) {
     // A trial is judged at the pose its loop closing has just computed.
-    if (lastQ_.size() != q.size() || lastQ_ != q) {
-        calcPositionKinematics(model_, data_, q);
-        lastQ_ = q;
-    }
+    if (data_.q != q) calcPositionKinematics(model_, data_, q);
     if (withJacobian) {
         calcJointMotions(jacobianLinks_);
         A_.setZero();
@@ -354,7 +353,6 @@ void InverseKinematicsSolver::closeLoops(Eigen::VectorXd& q) {
     for (int iteration = 0; iteration < kLoopClosingIterations; ++iteration) {
         // The gaps alone: the tasks are evaluated once the pose is closed.
         calcPositionKinematics(model_, data_, q);
-        lastQ_ = q;
         fillLoopGaps(false);
         if (c_.lpNorm<Eigen::Infinity>() <= kClosedGap) return;
         calcJointMotions(loopChainLinks_);
@@ -638,7 +636,6 @@ void InverseKinematicsSolver::refreshCurvature(const InverseKinematicsTargets& t
                                                        .segment(stepped.qStart, stepped.nq);
         applyCoordinateCouplers(model_, plus);
         calcPositionKinematics(model_, data_, plus);
-        lastQ_ = plus;
         for (int i = 0; i < model_.getNumLinks(); ++i) {
             const Joint& joint = model_.getJoint(i);
             moved[static_cast<std::size_t>(i)] = movedLink(joint.parent) ||

@@ -174,7 +174,6 @@ private:
     std::vector<Eigen::Index> loopColumns_;    // the free unknowns the loops move, while closing them
     Eigen::MatrixXd stepHessian_;     // the step's: A^T A + curvature_ (observed x observed)
     Eigen::MatrixXd H_;               // stepHessian_ damped, with the active set's rows fixed
-    Eigen::VectorXd lastQ_;  // q of the last evaluation, for the couplers' slopes
     Eigen::VectorXd markerErrors_;
     int markersSeen_ = 0;
     Eigen::VectorXd orientationErrors_;  // rad, per orientation task; NaN where not seen
