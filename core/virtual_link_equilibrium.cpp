@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "sinew/core/error.hpp"
@@ -27,12 +28,15 @@ double calcTensionOf(const Wire& wire, double length, double speed, double time)
 }
 
 // The change of eq.residual (scaled) when the wire points of eq.wires move by eq.dp_GP at fixed wire speeds,
-// into `out`. The virtual link in slot movedSlot (or none, -1) moves rigidly with its origin displaced by
-// dOrigin, so its moment arms change by dp_GP - dOrigin; the other virtual links' points must not move.
-// With f = -T g at each point (g = dL/dp = e_in - e_out): df = -T' dL g - T (de_in - de_out), where
-// dL = sum over the wire's points of g . dp and de = (1 - e e^T) d(segment) / l.
-void calcResidualDerivative(const Model& model, const Data& data, VirtualLinkEquilibriumData& eq, int movedSlot,
-                            const Eigen::Vector3d& dOrigin, Eigen::Ref<Eigen::VectorXd> out) {
+// into `out`, for N displacements at once (column j of dp_GP and of out). The virtual link in slot movedSlot
+// (or none, -1) moves rigidly with its origin displaced by dOrigin[j], so its moment arms change by
+// dp_GP - dOrigin; the other virtual links' points must not move. With f = -T g at each point
+// (g = dL/dp = e_in - e_out): df = -T' dL g - T (de_in - de_out), where dL = sum over the wire's points of
+// g . dp and de = (1 - e e^T) d(segment) / l. Each column's arithmetic is that of its displacement alone;
+// taking a link's six together shares the lookups and moment arms that six passes repeated.
+template <int N>
+void calcResidualDerivatives(const Model& model, const Data& data, VirtualLinkEquilibriumData& eq, int movedSlot,
+                             const std::array<Eigen::Vector3d, N>& dOrigin, Eigen::Ref<Eigen::MatrixXd> out) {
     const std::vector<WirePoint>& points = model.getWirePoints();
     out.setZero();
     // Moving one virtual link leaves the wires that do not touch it as they are.
@@ -40,29 +44,36 @@ void calcResidualDerivative(const Model& model, const Data& data, VirtualLinkEqu
         const Wire& wire = model.getWire(w);
         const std::size_t first = static_cast<std::size_t>(wire.firstPoint);
         const std::size_t last = first + static_cast<std::size_t>(wire.numPoints) - 1;
-        double dL = 0;
-        for (std::size_t k = first; k <= last; ++k) dL += data.dLdp_GP[k].dot(eq.dp_GP[k]);
+        std::array<double, N> dL{};
+        for (std::size_t k = first; k <= last; ++k)
+            for (int j = 0; j < N; ++j) dL[j] += data.dLdp_GP[k].dot(Eigen::Vector3d(eq.dp_GP[k].col(j)));
         for (std::size_t k = first; k < last; ++k) {
             const Eigen::Vector3d& e = eq.segmentDirection[k];
-            const Eigen::Vector3d relative = eq.dp_GP[k + 1] - eq.dp_GP[k];
-            eq.dSegmentDirection[k] = eq.segmentLength[k] > kMinSegment
-                                          ? Eigen::Vector3d((relative - e * e.dot(relative)) / eq.segmentLength[k])
-                                          : Eigen::Vector3d::Zero();
+            for (int j = 0; j < N; ++j) {
+                const Eigen::Vector3d relative = Eigen::Vector3d(eq.dp_GP[k + 1].col(j)) - Eigen::Vector3d(eq.dp_GP[k].col(j));
+                eq.dSegmentDirection[k].col(j) = eq.segmentLength[k] > kMinSegment
+                                                     ? Eigen::Vector3d((relative - e * e.dot(relative)) / eq.segmentLength[k])
+                                                     : Eigen::Vector3d::Zero();
+            }
         }
-        const double T = eq.tension[w], dT = eq.tensionSlope[w] * dL;
+        const double T = eq.tension[w];
         for (std::size_t k = first; k <= last; ++k) {
             const int slot = eq.slotOfLink[static_cast<std::size_t>(points[k].link)];
             if (slot < 0) continue;
             const std::size_t v = static_cast<std::size_t>(points[k].link), s = static_cast<std::size_t>(slot);
-            Eigen::Vector3d dg = Eigen::Vector3d::Zero();
-            if (k > first) dg += eq.dSegmentDirection[k - 1];
-            if (k < last) dg -= eq.dSegmentDirection[k];
             const Eigen::Vector3d f = -T * data.dLdp_GP[k];
-            const Eigen::Vector3d df = -dT * data.dLdp_GP[k] - T * dg;
             const Eigen::Vector3d r = data.R_GB[v] * points[k].p_B;
-            const Eigen::Vector3d dr = slot == movedSlot ? Eigen::Vector3d(eq.dp_GP[k] - dOrigin) : Eigen::Vector3d::Zero();
-            out.segment<3>(6 * slot) += (dr.cross(f) + r.cross(df)) / eq.lengthScale[s];
-            out.segment<3>(6 * slot + 3) += df;
+            for (int j = 0; j < N; ++j) {
+                const double dT = eq.tensionSlope[w] * dL[j];
+                Eigen::Vector3d dg = Eigen::Vector3d::Zero();
+                if (k > first) dg += Eigen::Vector3d(eq.dSegmentDirection[k - 1].col(j));
+                if (k < last) dg -= Eigen::Vector3d(eq.dSegmentDirection[k].col(j));
+                const Eigen::Vector3d df = -dT * data.dLdp_GP[k] - T * dg;
+                const Eigen::Vector3d dr =
+                    slot == movedSlot ? Eigen::Vector3d(Eigen::Vector3d(eq.dp_GP[k].col(j)) - dOrigin[j]) : Eigen::Vector3d::Zero();
+                out.col(j).segment<3>(6 * slot) += (dr.cross(f) + r.cross(df)) / eq.lengthScale[s];
+                out.col(j).segment<3>(6 * slot + 3) += df;
+            }
         }
     }
 }
@@ -157,8 +168,8 @@ VirtualLinkEquilibriumData::VirtualLinkEquilibriumData(const Model& model)
     tensionSlope = Eigen::VectorXd::Zero(model.getNumWires());
     segmentDirection.assign(points.size(), Eigen::Vector3d::Zero());
     segmentLength.assign(points.size(), 0.0);
-    dp_GP.assign(points.size(), Eigen::Vector3d::Zero());
-    dSegmentDirection.assign(points.size(), Eigen::Vector3d::Zero());
+    dp_GP.assign(points.size(), Eigen::Matrix<double, 3, 6>::Zero());
+    dSegmentDirection.assign(points.size(), Eigen::Matrix<double, 3, 6>::Zero());
     R_GV0.assign(links.size(), Eigen::Matrix3d::Identity());
     p_GV0.assign(links.size(), Eigen::Vector3d::Zero());
 }
@@ -217,26 +228,28 @@ void calcVirtualLinkResidual(const Model& model, Data& data, double time, Virtua
 
 void calcVirtualLinkStiffness(const Model& model, const Data& data, VirtualLinkEquilibriumData& eq) {
     const std::vector<WirePoint>& points = model.getWirePoints();
-    // Column by column: the scaled residual's change for a unit scaled displacement of one virtual link.
+    // A link's six columns together: the scaled residual's change for a unit scaled displacement of it.
     for (std::size_t s = 0; s < eq.links.size(); ++s) {
-        const int v = eq.links[s];
+        const std::size_t v = static_cast<std::size_t>(eq.links[s]);
+        std::array<Eigen::Vector3d, 6> dtheta, dOrigin;
         for (int j = 0; j < 6; ++j) {
-            const Eigen::Vector3d dtheta = j < 3 ? Eigen::Vector3d(Eigen::Vector3d::Unit(j) / eq.lengthScale[s])
-                                                 : Eigen::Vector3d::Zero();
-            const Eigen::Vector3d dOrigin = j < 3 ? Eigen::Vector3d(Eigen::Vector3d::Zero()) : Eigen::Vector3d(Eigen::Vector3d::Unit(j - 3));
-            for (int w : eq.wiresOfSlot[s]) {
-                const Wire& wire = model.getWire(w);
-                for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
-                    const std::size_t kk = static_cast<std::size_t>(k);
-                    eq.dp_GP[kk] = points[kk].link == v
-                                       ? Eigen::Vector3d(dOrigin + dtheta.cross(data.R_GB[static_cast<std::size_t>(v)] *
-                                                                                points[kk].p_B))
-                                       : Eigen::Vector3d::Zero();
-                }
-            }
-            calcResidualDerivative(model, data, eq, static_cast<int>(s), dOrigin,
-                                   eq.stiffness.col(6 * static_cast<Eigen::Index>(s) + j));
+            dtheta[j] = j < 3 ? Eigen::Vector3d(Eigen::Vector3d::Unit(j) / eq.lengthScale[s]) : Eigen::Vector3d::Zero();
+            dOrigin[j] = j < 3 ? Eigen::Vector3d(Eigen::Vector3d::Zero()) : Eigen::Vector3d(Eigen::Vector3d::Unit(j - 3));
         }
+        for (int w : eq.wiresOfSlot[s]) {
+            const Wire& wire = model.getWire(w);
+            for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
+                const std::size_t kk = static_cast<std::size_t>(k);
+                if (static_cast<std::size_t>(points[kk].link) != v) {
+                    eq.dp_GP[kk].setZero();
+                    continue;
+                }
+                const Eigen::Vector3d r = data.R_GB[v] * points[kk].p_B;
+                for (int j = 0; j < 6; ++j) eq.dp_GP[kk].col(j) = Eigen::Vector3d(dOrigin[j] + dtheta[j].cross(r));
+            }
+        }
+        calcResidualDerivatives<6>(model, data, eq, static_cast<int>(s), dOrigin,
+                                   eq.stiffness.middleCols<6>(6 * static_cast<Eigen::Index>(s)));
     }
     eq.stiffness = -eq.stiffness;
     // The bones' motion with the virtual links held still.
@@ -244,11 +257,11 @@ void calcVirtualLinkStiffness(const Model& model, const Data& data, VirtualLinkE
         const Wire& wire = model.getWire(w);
         for (int k = wire.firstPoint; k < wire.firstPoint + wire.numPoints; ++k) {
             const std::size_t kk = static_cast<std::size_t>(k);
-            eq.dp_GP[kk] = eq.slotOfLink[static_cast<std::size_t>(points[kk].link)] < 0 ? data.v_GP[kk]
-                                                                                          : Eigen::Vector3d::Zero();
+            eq.dp_GP[kk].col(0) = eq.slotOfLink[static_cast<std::size_t>(points[kk].link)] < 0 ? data.v_GP[kk]
+                                                                                                : Eigen::Vector3d::Zero();
         }
     }
-    calcResidualDerivative(model, data, eq, -1, Eigen::Vector3d::Zero(), eq.boneRate);
+    calcResidualDerivatives<1>(model, data, eq, -1, {Eigen::Vector3d::Zero()}, eq.boneRate);
 }
 
 const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibrium(const Model& model, Data& data, double time,

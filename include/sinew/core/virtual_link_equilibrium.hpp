@@ -49,10 +49,10 @@ struct VirtualLinkEquilibriumData {
     Eigen::VectorXd tension;       // N, per model wire (entries of `wires` only)
     Eigen::VectorXd tensionSlope;  // N/m, d(tension)/d(length) at fixed speed, per model wire (ditto)
     // Per model wire point (entries of `wires` only): the segment leaving the point (unit vector, length m),
-    // and displacement buffers of a directional derivative.
+    // and displacement buffers of up to six directional derivatives at once (a column each).
     std::vector<Eigen::Vector3d> segmentDirection;
     std::vector<double> segmentLength;
-    std::vector<Eigen::Vector3d> dp_GP, dSegmentDirection;
+    std::vector<Eigen::Matrix<double, 3, 6>> dp_GP, dSegmentDirection;
     std::vector<Eigen::Matrix3d> R_GV0;  // poses before a line-search trial (nv)
     std::vector<Eigen::Vector3d> p_GV0;
     VirtualLinkEquilibriumStatus status;
