@@ -57,6 +57,8 @@ void calcResidualDerivatives(const Model& model, const Data& data, VirtualLinkEq
             }
         }
         const double T = eq.tension[w];
+        std::array<double, N> dT;
+        for (int j = 0; j < N; ++j) dT[j] = eq.tensionSlope[w] * dL[j];
         for (std::size_t k = first; k <= last; ++k) {
             const int slot = eq.slotOfLink[static_cast<std::size_t>(points[k].link)];
             if (slot < 0) continue;
@@ -64,11 +66,10 @@ void calcResidualDerivatives(const Model& model, const Data& data, VirtualLinkEq
             const Eigen::Vector3d f = -T * data.dLdp_GP[k];
             const Eigen::Vector3d r = data.R_GB[v] * points[k].p_B;
             for (int j = 0; j < N; ++j) {
-                const double dT = eq.tensionSlope[w] * dL[j];
                 Eigen::Vector3d dg = Eigen::Vector3d::Zero();
                 if (k > first) dg += Eigen::Vector3d(eq.dSegmentDirection[k - 1].col(j));
                 if (k < last) dg -= Eigen::Vector3d(eq.dSegmentDirection[k].col(j));
-                const Eigen::Vector3d df = -dT * data.dLdp_GP[k] - T * dg;
+                const Eigen::Vector3d df = -dT[j] * data.dLdp_GP[k] - T * dg;
                 const Eigen::Vector3d dr =
                     slot == movedSlot ? Eigen::Vector3d(Eigen::Vector3d(eq.dp_GP[k].col(j)) - dOrigin[j]) : Eigen::Vector3d::Zero();
                 out.col(j).segment<3>(6 * slot) += (dr.cross(f) + r.cross(df)) / eq.lengthScale[s];
