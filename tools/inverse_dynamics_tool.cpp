@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <future>
+#include <utility>
 
 #include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/data.hpp"
@@ -16,6 +18,18 @@
 
 namespace sinew {
 namespace {
+
+// work() while `first` runs on its thread. Should work throw, first's error, if it has one, is the one
+// reported, as it would be were the two run in order.
+template <typename T, typename Work>
+auto runAlongside(std::future<T>& first, Work work) {
+    try {
+        return work();
+    } catch (...) {
+        first.get();
+        throw;
+    }
+}
 
 // One per speed, as OpenSim names them: "<coordinate>_moment" for rotational coordinates, "<coordinate>_force"
 // otherwise; a ball or free joint's angular speeds j_wx.. give j_wx_moment.., a free joint's linear ones
@@ -39,12 +53,18 @@ std::vector<std::string> getGeneralizedForceNames(const Model& model) {
 
 StorageTable runInverseDynamics(const Model& model, const StorageTable& coordinates, const ExternalLoads* loads,
                                 const InverseDynamicsOptions& options) {
+    // The loads' splines (one per data column, over every row of the file) and the coordinates' processing
+    // are independent: the loads are fitted on a second thread.
+    std::future<std::optional<MeasuredLoads>> fitLoads = std::async(std::launch::async, [&] {
+        std::optional<MeasuredLoads> fitted;
+        if (loads) fitted.emplace(model, *loads);
+        return fitted;
+    });
+    // An error in the coordinates, the earlier step, is the one reported (the future waits for the fit).
     const CoordinateSamples samples = readCoordinateSamples(model, coordinates);
     const CoordinateTrajectory trajectory = preprocessCoordinateSamples(model, samples, options.lowpassCutoffHz,
                                                                         options.startTime, options.finalTime);
-
-    std::optional<MeasuredLoads> measured;
-    if (loads) measured.emplace(model, *loads);
+    const std::optional<MeasuredLoads> measured = fitLoads.get();
 
     StorageTable result;
     result.name = "Inverse Dynamics Generalized Forces";
@@ -76,7 +96,15 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
 std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std::string& outputDirectory,
                                    const std::function<void(const std::string&)>& notes,
                                    const std::function<void(int frame, int frames)>& onFrame) {
-    const Model model = loadModel(setup.modelFile, notes);
+    // The .osim and the motion files are read at once: the model on a second thread. Its notes come first,
+    // as they would in order, and so does its error.
+    std::future<Model> modelLoad = std::async(std::launch::async, [&] { return loadModel(setup.modelFile, notes); });
+    const auto [loads, coordinateFile] = runAlongside(modelLoad, [&] {
+        std::optional<ExternalLoads> externalLoads;
+        if (!setup.externalLoadsFile.empty()) externalLoads = readExternalLoads(setup.externalLoadsFile);
+        return std::make_pair(std::move(externalLoads), readStorageFile(setup.coordinatesFile));
+    });
+    const Model model = modelLoad.get();
     if (notes) {
         const auto& excluded = setup.forcesToExclude;
         const bool musclesOut = std::any_of(excluded.begin(), excluded.end(), [](const std::string& name) {
@@ -87,12 +115,8 @@ std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std:
     }
     if (notes && setup.coordinatesInDegrees)
         notes("coordinates_in_degrees (OpenSim 3) is ignored: the motion file's inDegrees header decides, as in OpenSim 4");
-    std::optional<ExternalLoads> loads;
-    if (!setup.externalLoadsFile.empty()) {
-        loads = readExternalLoads(setup.externalLoadsFile);
-        if (notes && !loads->modelKinematicsFile.empty())
-            notes("external_loads_model_kinematics_file is ignored: the points are taken as given in their frames");
-    }
+    if (notes && loads && !loads->modelKinematicsFile.empty())
+        notes("external_loads_model_kinematics_file is ignored: the points are taken as given in their frames");
     InverseDynamicsOptions options;
     const auto& excluded = setup.forcesToExclude;
     options.forceElements = std::find(excluded.begin(), excluded.end(), "All") == excluded.end();
@@ -105,7 +129,7 @@ std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std:
     options.startTime = setup.startTime;
     options.finalTime = setup.endTime;
     options.onFrame = onFrame;
-    const StorageTable coordinates = completeCoordinateTable(model, readStorageFile(setup.coordinatesFile), notes);
+    const StorageTable coordinates = completeCoordinateTable(model, coordinateFile, notes);
     const StorageTable result = runInverseDynamics(model, coordinates, loads ? &*loads : nullptr, options);
     const std::filesystem::path directory = outputDirectory.empty() ? setup.resultsDirectory : outputDirectory;
     std::filesystem::create_directories(directory);
