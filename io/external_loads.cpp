@@ -68,7 +68,7 @@ ExternalLoads readExternalLoads(const std::string& path) {
     loads.lowpassCutoffFrequencyForLoadKinematics = osim::readDouble(
         doc, root, "lowpass_cutoff_frequency_for_load_kinematics", loads.lowpassCutoffFrequencyForLoadKinematics);
     for (const Element* element : osim::getSetObjects(root)) {
-        if (std::string(element->Name()) != "ExternalForce") doc.fail(*element, "expected an <ExternalForce>");
+        if (std::string(osim::typeOf(*element)) != "ExternalForce") doc.fail(*element, "expected an <ExternalForce>");
         loads.forces.push_back(readExternalForce(doc, *element, loads));
     }
     return loads;

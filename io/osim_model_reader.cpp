@@ -149,7 +149,7 @@ private:
     std::set<std::string> bodyNames_, jointNames_, coordinateNames_, forceNames_;
 
     void addUnsupported(const Element& element) {
-        model_.unsupported.push_back({element.Name(), osim::getName(element), doc_.where(element)});
+        model_.unsupported.push_back({osim::typeOf(element), osim::getName(element), doc_.where(element)});
     }
 
     std::string requireName(const Element& element, std::set<std::string>& taken, const char* what) {
@@ -177,8 +177,8 @@ private:
     }
 
     void readModelProperties(const Element& root) {
-        for (const Element* child = root.FirstChildElement(); child; child = child->NextSiblingElement()) {
-            const std::string type = child->Name();
+        for (const Element* child = osim::firstChild(root); child; child = osim::nextSibling(*child)) {
+            const std::string type = osim::typeOf(*child);
             if (type == "Ground") {
                 readGround(*child);
             } else if (type == "gravity") {
@@ -207,7 +207,7 @@ private:
                 markerSetPath_ = setPath(*child, "markerset");
             } else if (type == "ComponentSet") {
                 for (const Element* component : osim::getSetObjects(*child)) {
-                    if (std::string(component->Name()) == "PhysicalOffsetFrame")
+                    if (std::string(osim::typeOf(*component)) == "PhysicalOffsetFrame")
                         addFrameDefinition(setPath(*child, "componentset") + "/" + osim::getName(*component), *component);
                     else
                         addUnsupported(*component);
@@ -251,8 +251,8 @@ private:
     void collectFrames(const Element& owner, const char* list, const std::string& ownerPath) {
         const Element* frames = osim::findChild(owner, list);
         if (!frames) return;
-        for (const Element* frame = frames->FirstChildElement(); frame; frame = frame->NextSiblingElement()) {
-            if (std::string(frame->Name()) != "PhysicalOffsetFrame") {
+        for (const Element* frame = osim::firstChild(*frames); frame; frame = osim::nextSibling(*frame)) {
+            if (std::string(osim::typeOf(*frame)) != "PhysicalOffsetFrame") {
                 addUnsupported(*frame);
                 continue;
             }
@@ -266,7 +266,7 @@ private:
         const Element* set = osim::findChild(owner, "WrapObjectSet");
         if (!set) return;
         for (const Element* element : osim::getSetObjects(*set)) {
-            const std::string type = element->Name();
+            const std::string type = osim::typeOf(*element);
             OsimWrapObject wrap;
             if (type == "WrapSphere") {
                 wrap.shape = OsimWrapObject::Shape::Sphere;
@@ -323,7 +323,7 @@ private:
     // A frame socket (its text a component path relative to `ownerPath`, the socket's owner) resolved to
     // a body. A bare name that is not a path from the owner may name a frame anywhere, if only one.
     OsimFrameRef followFrameSocket(const Element& socket, const std::string& ownerPath) {
-        const std::string text = osim::trim(socket.GetText() ? socket.GetText() : "");
+        const std::string text = osim::textOf(socket);
         if (text.empty()) doc_.fail(socket, "names no frame");
         const std::string path = makeAbsolutePath(ownerPath, text);
         if (const OsimFrameRef* frame = resolveFrame(path)) return *frame;
@@ -340,7 +340,7 @@ private:
 
     // A coordinate socket resolved to the coordinate's name, the same way as frames.
     std::string followCoordinateSocket(const Element& socket, const std::string& ownerPath) {
-        const std::string text = osim::trim(socket.GetText() ? socket.GetText() : "");
+        const std::string text = osim::textOf(socket);
         if (text.empty()) doc_.fail(socket, "names no coordinate");
         const auto found = coordinatesByPath_.find(makeAbsolutePath(ownerPath, text));
         if (found != coordinatesByPath_.end()) return model_.coordinates[found->second].name;
@@ -359,7 +359,7 @@ private:
     }
 
     void readJoint(const Element& element) {
-        const auto info = jointTypes().find(element.Name());
+        const auto info = jointTypes().find(osim::typeOf(element));
         if (info == jointTypes().end()) {
             addUnsupported(element);
             return;
@@ -373,9 +373,9 @@ private:
         joint.child = followFrameSocket(requireChild(element, "socket_child_frame"), path);
         std::vector<const Element*> declared;
         if (const Element* list = osim::findChild(element, "coordinates"))
-            for (const Element* coordinate = list->FirstChildElement(); coordinate;
-                 coordinate = coordinate->NextSiblingElement()) {
-                if (std::string(coordinate->Name()) != "Coordinate") doc_.fail(*coordinate, "expected a <Coordinate>");
+            for (const Element* coordinate = osim::firstChild(*list); coordinate;
+                 coordinate = osim::nextSibling(*coordinate)) {
+                if (std::string(osim::typeOf(*coordinate)) != "Coordinate") doc_.fail(*coordinate, "expected a <Coordinate>");
                 declared.push_back(coordinate);
             }
         std::vector<const Element*> ordered = declared;
@@ -384,7 +384,7 @@ private:
             readSpatialTransform(element, joint);
             orderCustomCoordinates(element, joint, declared, ordered, motions);
         } else if (declared.size() != motions.size()) {
-            doc_.fail(element, std::to_string(declared.size()) + " coordinates; a " + element.Name() + " has " +
+            doc_.fail(element, std::to_string(declared.size()) + " coordinates; a " + osim::typeOf(element) + " has " +
                                    std::to_string(motions.size()));
         }
         joint.firstCoordinate = static_cast<int>(model_.coordinates.size());
@@ -402,8 +402,8 @@ private:
             OsimTransformAxis& axis = joint.spatialTransform[i];
             axis.axis = Eigen::Vector3d::Unit(i % 3);  // OpenSim's defaults: x, y, z, x, y, z
             axis.function.where = doc_.where(*transform);
-            const Element* found = transform->FirstChildElement("TransformAxis");
-            while (found && osim::getName(*found) != names[i]) found = found->NextSiblingElement("TransformAxis");
+            const Element* found = osim::findChild(*transform, "TransformAxis");
+            while (found && osim::getName(*found) != names[i]) found = osim::nextSibling(*found, "TransformAxis");
             if (!found) continue;
             axis.coordinates = osim::readNames(doc_, *found, "coordinates");
             if (axis.coordinates.size() > 1)
@@ -490,7 +490,7 @@ private:
     }
 
     void readConstraint(const Element& element) {
-        if (std::string(element.Name()) != "CoordinateCouplerConstraint") {
+        if (std::string(osim::typeOf(element)) != "CoordinateCouplerConstraint") {
             addUnsupported(element);
             return;
         }
@@ -514,7 +514,7 @@ private:
     }
 
     void readForce(const Element& element) {
-        const std::string type = osim::getCurrentTypeName(element.Name());
+        const std::string type = osim::getCurrentTypeName(osim::typeOf(element));
         if (type == "CoordinateActuator") {
             model_.coordinateActuators.push_back(osim::readCoordinateActuator(doc_, element));
             requireCoordinate(element, "coordinate", model_.coordinateActuators.back().coordinate);
@@ -549,7 +549,7 @@ private:
 
     void readContactGeometry(const Element& element) {
         OsimContactGeometry geometry;
-        geometry.type = element.Name();
+        geometry.type = osim::typeOf(element);
         geometry.name = osim::getName(element);
         geometry.where = doc_.where(element);
         if (geometry.type != "ContactSphere" && geometry.type != "ContactHalfSpace") {
@@ -659,13 +659,13 @@ private:
     // Every property of the force but its path: scalars as text, functions read, nested objects
     // flattened as "Object.property".
     void collectProperties(const Element& owner, const std::string& prefix, OsimPathForce& force) {
-        for (const Element* child = owner.FirstChildElement(); child; child = child->NextSiblingElement()) {
-            const std::string type = child->Name();
+        for (const Element* child = osim::firstChild(owner); child; child = osim::nextSibling(*child)) {
+            const std::string type = osim::typeOf(*child);
             if (type == "GeometryPath" || type == "Appearance") continue;  // the path is read; display only
-            const Element* only = child->FirstChildElement();
+            const Element* only = osim::firstChild(*child);
             if (!only) {
-                force.properties[prefix + type] = child->GetText() ? osim::trim(child->GetText()) : "";
-            } else if (!only->NextSiblingElement() && osim::isFunctionType(only->Name())) {
+                force.properties[prefix + type] = osim::textOf(*child);
+            } else if (!osim::nextSibling(*only) && osim::isFunctionType(osim::typeOf(*only))) {
                 force.curves[prefix + type] = osim::readFunction(doc_, *only);
             } else if (osim::isFunctionType(type)) {
                 force.curves[prefix + (osim::getName(*child).empty() ? type : osim::getName(*child))] =
@@ -680,7 +680,7 @@ private:
         OsimGeometryPath path;
         path.where = doc_.where(element);
         for (const Element* point : osim::getSetObjects(requireChild(element, "PathPointSet"))) {
-            const std::string type = point->Name();
+            const std::string type = osim::typeOf(*point);
             OsimPathPoint pathPoint;
             if (type == "PathPoint")
                 pathPoint.type = OsimPathPoint::Type::Fixed;
@@ -712,7 +712,7 @@ private:
                     if (const Element* function = osim::findFunction(doc_, *point, functions[i]))
                         pathPoint.locationFunctions[i] = osim::readFunction(doc_, *function);
                     const Element* socket = osim::findChild(*point, sockets[i]);
-                    if (socket && socket->GetText() && !osim::trim(socket->GetText()).empty())
+                    if (socket && !osim::textOf(*socket).empty())
                         pathPoint.locationCoordinates[i] = followCoordinateSocket(*socket, pointPath);
                 }
             }
@@ -726,7 +726,7 @@ private:
     }
 
     OsimPathWrap readPathWrap(const Element& element) {
-        if (std::string(element.Name()) != "PathWrap") doc_.fail(element, "expected a <PathWrap>");
+        if (std::string(osim::typeOf(element)) != "PathWrap") doc_.fail(element, "expected a <PathWrap>");
         OsimPathWrap wrap;
         wrap.where = doc_.where(element);
         wrap.wrapObject = osim::readText(doc_, element, "wrap_object");

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string_view>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -44,7 +45,13 @@ const std::map<std::string, OsimFunctionType>& functionTypes() {
     return types;
 }
 
-std::string textOf(const Element& element) { return element.GetText() ? trim(element.GetText()) : std::string(); }
+pugi::xml_node nodeOf(const Element& element) { return pugi::xml_node(const_cast<Element*>(&element)); }
+
+// The node itself when it is an element, else its next sibling element (pugixml keeps text among them).
+const Element* elementFrom(pugi::xml_node node) {
+    while (node && node.type() != pugi::node_element) node = node.next_sibling();
+    return node.internal_object();
+}
 
 // Knots of a spline or piecewise-linear function: x and y of one size >= 2, x strictly increasing.
 void readKnots(const XmlDocument& doc, const Element& element, OsimFunction& function) {
@@ -62,40 +69,60 @@ void readKnots(const XmlDocument& doc, const Element& element, OsimFunction& fun
                              " follows " + std::to_string(function.x[i - 1]));
 }
 
-}  // namespace
-
-XmlDocument::XmlDocument(std::string path) : path_(std::move(path)) {
-    const tinyxml2::XMLError status = document_.LoadFile(path_.c_str());
-    if (status == tinyxml2::XML_ERROR_FILE_NOT_FOUND || status == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED ||
-        status == tinyxml2::XML_ERROR_FILE_READ_ERROR)
-        throw ModelError(path_, "cannot open for reading");
-    if (status != tinyxml2::XML_SUCCESS)
-        throw ModelError(path_ + ":" + std::to_string(document_.ErrorLineNum()),
-                         std::string("malformed XML (") + document_.ErrorStr() + ")");
-    const Element* root = document_.RootElement();
-    if (!root) throw ModelError(path_, "no XML element in the file");
-    if (std::string(root->Name()) != "OpenSimDocument")
-        throw ModelError(where(*root), "the root element is <" + std::string(root->Name()) +
-                                           ">; an OpenSim file has <OpenSimDocument>");
-    version_ = root->IntAttribute("Version", 0);
+std::string readWholeFile(const std::string& path) {
+    std::ifstream file(path, std::ios::binary | std::ios::ate);
+    const std::streamoff size = file.is_open() ? static_cast<std::streamoff>(file.tellg()) : -1;
+    if (size < 0) throw ModelError(path, "cannot open for reading");
+    std::string text(static_cast<std::size_t>(size), '\0');
+    file.seekg(0);
+    if (!file.read(text.data(), size)) throw ModelError(path, "cannot open for reading");
+    return text;
 }
 
+}  // namespace
+
+XmlDocument::XmlDocument(std::string path) : path_(std::move(path)), text_(readWholeFile(path_)) {
+    for (std::size_t i = text_.find('\n'); i != std::string::npos; i = text_.find('\n', i + 1)) newlines_.push_back(i);
+    // In place: pugixml keeps its strings in text_, and the offsets it reports are the file's own.
+    const pugi::xml_parse_result parsed = document_.load_buffer_inplace(text_.data(), text_.size());
+    if (parsed.status == pugi::status_no_document_element) throw ModelError(path_, "no XML element in the file");
+    if (!parsed) {
+        const std::size_t at = static_cast<std::size_t>(std::max<std::ptrdiff_t>(parsed.offset, 0));
+        // The line the parser stopped on, as the file has it (parsing in place has cut text_ into strings).
+        const int line = lineAt(at);
+        const std::string original = readWholeFile(path_);
+        const std::size_t begin = line == 1 ? 0 : newlines_[static_cast<std::size_t>(line - 2)] + 1;
+        const std::size_t end = std::min({original.find('\n', begin), original.size(), begin + 80});
+        throw ModelError(path_ + ":" + std::to_string(line), std::string("malformed XML (") + parsed.description() +
+                                                                  ") at '" + trim(original.substr(begin, end - begin)) + "'");
+    }
+    const pugi::xml_node root = document_.document_element();
+    if (std::string(root.name()) != "OpenSimDocument")
+        throw ModelError(where(*root.internal_object()), "the root element is <" + std::string(root.name()) +
+                                                             ">; an OpenSim file has <OpenSimDocument>");
+    version_ = root.attribute("Version").as_int(0);
+}
+
+const Element& XmlDocument::getRoot() const { return *document_.document_element().internal_object(); }
+
 const Element& XmlDocument::getObject(const char* type) const {
-    const Element* root = document_.RootElement();
-    const Element* object = root->FirstChildElement(type);
-    if (!object) fail(*root, std::string("holds no <") + type + ">");
+    const Element* object = findChild(getRoot(), type);
+    if (!object) fail(getRoot(), std::string("holds no <") + type + ">");
     return *object;
 }
 
 const Element& XmlDocument::getFirstObject() const {
-    const Element* root = document_.RootElement();
-    const Element* object = root->FirstChildElement();
-    if (!object) fail(*root, "holds no object");
+    const Element* object = firstChild(getRoot());
+    if (!object) fail(getRoot(), "holds no object");
     return *object;
 }
 
+int XmlDocument::lineAt(std::size_t offset) const {
+    return 1 + static_cast<int>(std::lower_bound(newlines_.begin(), newlines_.end(), offset) - newlines_.begin());
+}
+
 std::string XmlDocument::where(const Element& element) const {
-    return path_ + ":" + std::to_string(element.GetLineNum());
+    return path_ + ":" + std::to_string(lineAt(static_cast<std::size_t>(std::max<std::ptrdiff_t>(nodeOf(element).offset_debug(), 0))));
 }
 
 void XmlDocument::fail(const Element& element, const std::string& message) const {
@@ -109,15 +136,22 @@ std::string XmlDocument::resolveFile(const std::string& name) const {
     return (std::filesystem::path(path_).parent_path() / file).lexically_normal().string();
 }
 
-std::string describe(const Element& element) {
-    const std::string name = getName(element);
-    return "<" + std::string(element.Name()) + (name.empty() ? "" : " name='" + name + "'") + ">";
+const char* typeOf(const Element& element) { return nodeOf(element).name(); }
+
+const Element* firstChild(const Element& owner) { return elementFrom(nodeOf(owner).first_child()); }
+
+const Element* nextSibling(const Element& element, const char* type) {
+    return type ? nodeOf(element).next_sibling(type).internal_object() : elementFrom(nodeOf(element).next_sibling());
 }
 
-std::string getName(const Element& element) {
-    const char* name = element.Attribute("name");
-    return name ? name : "";
+std::string textOf(const Element& element) { return trim(nodeOf(element).child_value()); }
+
+std::string describe(const Element& element) {
+    const std::string name = getName(element);
+    return "<" + std::string(typeOf(element)) + (name.empty() ? "" : " name='" + name + "'") + ">";
 }
+
+std::string getName(const Element& element) { return nodeOf(element).attribute("name").value(); }
 
 std::string trim(const std::string& text) {
     const char* const blanks = " \t\r\n";
@@ -126,7 +160,7 @@ std::string trim(const std::string& text) {
     return text.substr(begin, text.find_last_not_of(blanks) - begin + 1);
 }
 
-const Element* findChild(const Element& owner, const char* property) { return owner.FirstChildElement(property); }
+const Element* findChild(const Element& owner, const char* property) { return nodeOf(owner).child(property).internal_object(); }
 
 std::string readText(const XmlDocument&, const Element& owner, const char* property, const std::string& fallback) {
     const Element* element = findChild(owner, property);
@@ -140,7 +174,7 @@ std::vector<double> readNumbers(const XmlDocument& doc, const Element& element) 
     // SimTK writes vectors as "~[1,2,3]" and some files wrap them in parentheses; both read as plain lists.
     const std::string text = textOf(element);
     auto separates = [](char c) { return std::isspace(static_cast<unsigned char>(c)) || (c != '\0' && std::strchr(",()[]~", c)); };
-    const std::string name = element.Name();
+    const std::string name = typeOf(element);
     std::vector<double> numbers;
     for (std::size_t i = 0; i < text.size();) {
         while (i < text.size() && separates(text[i])) ++i;
@@ -212,8 +246,7 @@ std::vector<const Element*> getSetObjects(const Element& owner) {
     std::vector<const Element*> objects;
     const Element* list = findChild(owner, "objects");
     if (!list) return objects;
-    for (const Element* child = list->FirstChildElement(); child; child = child->NextSiblingElement())
-        objects.push_back(child);
+    for (const Element* child = firstChild(*list); child; child = nextSibling(*child)) objects.push_back(child);
     return objects;
 }
 
@@ -230,7 +263,7 @@ std::string getCurrentTypeName(const std::string& type) {
 bool isFunctionType(const std::string& type) { return functionTypes().count(type) > 0; }
 
 OsimFunction readFunction(const XmlDocument& doc, const Element& element) {
-    const auto type = functionTypes().find(element.Name());
+    const auto type = functionTypes().find(typeOf(element));
     if (type == functionTypes().end()) {
         std::string known;
         for (const auto& entry : functionTypes()) known += (known.empty() ? "" : ", ") + entry.first;
@@ -270,12 +303,12 @@ OsimFunction readFunction(const XmlDocument& doc, const Element& element) {
 
 const Element* findFunction(const XmlDocument& doc, const Element& owner, const char* property) {
     if (const Element* wrapper = findChild(owner, property)) {
-        const Element* function = wrapper->FirstChildElement();
-        if (function && function->NextSiblingElement())
+        const Element* function = firstChild(*wrapper);
+        if (function && nextSibling(*function))
             doc.fail(*wrapper, "holds more than one element; expected one function");
         return function;
     }
-    for (const Element* child = owner.FirstChildElement(); child; child = child->NextSiblingElement())
+    for (const Element* child = firstChild(owner); child; child = nextSibling(*child))
         if (getName(*child) == property) return child;
     return nullptr;
 }

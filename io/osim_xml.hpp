@@ -1,7 +1,7 @@
 #pragma once
-// Reading OpenSim XML documents (models, tool setups, external loads, force sets) with tinyxml2, every value
+// Reading OpenSim XML documents (models, tool setups, external loads, force sets) with pugixml, every value
 // traced to the file and line it came from. Private to sinew_io.
-#include <tinyxml2.h>
+#include <pugixml.hpp>
 
 #include <Eigen/Core>
 #include <string>
@@ -12,7 +12,8 @@
 
 namespace sinew::osim {
 
-using Element = tinyxml2::XMLElement;
+// An element of a loaded document, reached only through the functions below (pugixml's node, opaque).
+using Element = pugi::xml_node_struct;
 
 class XmlDocument {
 public:
@@ -37,10 +38,24 @@ public:
     std::string resolveFile(const std::string& name) const;
 
 private:
+    const Element& getRoot() const;
+    int lineAt(std::size_t offset) const;  // 1-based line of a byte offset into the file
+
     std::string path_;
-    tinyxml2::XMLDocument document_;
+    std::string text_;  // the file, parsed in place: the document's strings point into it
+    std::vector<std::size_t> newlines_;  // offsets of the file's line ends, for where()
+    pugi::xml_document document_;
     int version_ = 0;
 };
+
+// The element's tag: the type of an OpenSim object (<PinJoint>) or the name of a property (<mass>).
+const char* typeOf(const Element& element);
+// The first child element, and the element's next sibling element (of the given tag when one is given);
+// nullptr when there is none.
+const Element* firstChild(const Element& owner);
+const Element* nextSibling(const Element& element, const char* type = nullptr);
+// The element's own text, trimmed ("" when it has none).
+std::string textOf(const Element& element);
 
 // "<Type name='x'>" or "<Type>", for messages.
 std::string describe(const Element& element);

@@ -101,14 +101,14 @@ AnalyzeSetup readAnalyzeTool(const XmlDocument& doc, const Element& tool) {
                                                                   setup.lowpassCutoffFrequencyForCoordinates);
     if (const Element* analyses = osim::findChild(tool, "AnalysisSet"))
         for (const Element* analysis : osim::getSetObjects(*analyses)) {
-            if (std::string(analysis->Name()) == "StaticOptimization" && !setup.staticOptimization)
+            if (std::string(osim::typeOf(*analysis)) == "StaticOptimization" && !setup.staticOptimization)
                 setup.staticOptimization = readStaticOptimization(doc, *analysis);
             else
-                setup.unsupported.push_back({analysis->Name(), osim::getName(*analysis), doc.where(*analysis)});
+                setup.unsupported.push_back({osim::typeOf(*analysis), osim::getName(*analysis), doc.where(*analysis)});
         }
     if (const Element* controllers = osim::findChild(tool, "ControllerSet"))
         for (const Element* controller : osim::getSetObjects(*controllers))
-            setup.unsupported.push_back({controller->Name(), osim::getName(*controller), doc.where(*controller)});
+            setup.unsupported.push_back({osim::typeOf(*controller), osim::getName(*controller), doc.where(*controller)});
     return setup;
 }
 
@@ -146,7 +146,7 @@ InverseKinematicsSetup readInverseKinematicsTool(const XmlDocument& doc, const E
         setup.constraintWeight = osim::readDouble(doc, tool, "constraint_weight", setup.constraintWeight);
     if (const Element* tasks = osim::findChild(tool, "IKTaskSet"))
         for (const Element* task : osim::getSetObjects(*tasks)) {
-            const std::string type = task->Name();
+            const std::string type = osim::typeOf(*task);
             if (type == "IKMarkerTask")
                 setup.markerTasks.push_back(readInverseKinematicsTask(doc, *task));
             else if (type == "IKCoordinateTask")
@@ -180,7 +180,7 @@ AnalyzeSetup readAnalyzeSetup(const std::string& path) {
 ToolSetup readToolSetup(const std::string& path) {
     const XmlDocument doc(path);
     const Element& tool = doc.getFirstObject();
-    const std::string type = tool.Name();
+    const std::string type = osim::typeOf(tool);
     if (type == "InverseDynamicsTool") return readInverseDynamicsTool(doc, tool);
     if (type == "AnalyzeTool") return readAnalyzeTool(doc, tool);
     if (type == "InverseKinematicsTool") return readInverseKinematicsTool(doc, tool);
@@ -194,7 +194,7 @@ OsimForceSet readForceSetFile(const std::string& path) {
     forces.name = osim::getName(set);
     forces.file = path;
     for (const Element* element : osim::getSetObjects(set)) {
-        const std::string type = osim::getCurrentTypeName(element->Name());
+        const std::string type = osim::getCurrentTypeName(osim::typeOf(*element));
         if (type == "CoordinateActuator")
             forces.coordinateActuators.push_back(osim::readCoordinateActuator(doc, *element));
         else if (type == "PointActuator")
@@ -202,7 +202,7 @@ OsimForceSet readForceSetFile(const std::string& path) {
         else if (type == "TorqueActuator")
             forces.torqueActuators.push_back(osim::readTorqueActuator(doc, *element));
         else
-            forces.unsupported.push_back({element->Name(), osim::getName(*element), doc.where(*element)});
+            forces.unsupported.push_back({osim::typeOf(*element), osim::getName(*element), doc.where(*element)});
     }
     return forces;
 }

@@ -489,7 +489,7 @@ TEST(OsimModel, FramesOffsetInALoop) {
 }
 
 TEST(OsimModel, MalformedXmlAndOldVersions) {
-    EXPECT_TRUE(rejects("</BallJoint>", "</Ball>", "<BallJoint", {"malformed XML", "MISMATCHED_ELEMENT", "BallJoint"}));
+    EXPECT_TRUE(rejects("</BallJoint>", "</Ball>", "</Ball>", {"malformed XML", "mismatch", "</Ball>"}));
     EXPECT_TRUE(rejects("Version=\"40000\"", "Version=\"30000\"", "<Model", {"Version 30000", "OpenSim 4"}));
     const std::string missing = ::testing::TempDir() + "/no_such_model.osim";
     EXPECT_TRUE(test::throwsErrorAt([&] { readOsimModel(missing); }, missing + ": ", {"cannot open"}, missing));
