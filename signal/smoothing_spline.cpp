@@ -108,13 +108,17 @@ bool factorLDLT(SymmetricBand& a) {
     return true;
 }
 
-Eigen::VectorXd solveLDLT(const SymmetricBand& f, Eigen::VectorXd x) {
+void solveLDLTInPlace(const SymmetricBand& f, double* x) {
     const int n = f.size(), b = f.b;
     for (int i = 0; i < n; ++i)
-        for (int k = std::max(0, i - b); k < i; ++k) x(i) -= f.band(i - k, k) * x(k);
-    x.array() /= f.band.row(0).transpose().array();
+        for (int k = std::max(0, i - b); k < i; ++k) x[i] -= f.band(i - k, k) * x[k];
+    for (int i = 0; i < n; ++i) x[i] /= f.band(0, i);
     for (int i = n - 1; i >= 0; --i)
-        for (int k = i + 1; k <= std::min(n - 1, i + b); ++k) x(i) -= f.band(k - i, i) * x(k);
+        for (int k = i + 1; k <= std::min(n - 1, i + b); ++k) x[i] -= f.band(k - i, i) * x[k];
+}
+
+Eigen::VectorXd solveLDLT(const SymmetricBand& f, Eigen::VectorXd x) {
+    solveLDLTInPlace(f, x.data());
     return x;
 }
 
@@ -227,10 +231,34 @@ public:
     void setValues(const Eigen::Ref<const Eigen::VectorXd>& y) {
         if (y.size() != n_)
             throw Error("smoothing spline: " + std::to_string(y.size()) + " values for " + std::to_string(n_) + " sites");
-        for (Eigen::Index i = 0; i < n_; ++i)
-            if (!std::isfinite(y(i))) throw Error("smoothing spline: value " + sample("y", i, y(i)) + " is not finite");
+        checkFinite(y);
         y_ = y;
         rhs_ = N_.transpose() * w_.cwiseProduct(y_);
+    }
+
+    // The interpolant (p = 0) of every column of `values`, each column's arithmetic that of setValues and
+    // solve(0), but each sparse product done once for the whole table.
+    std::vector<SmoothingSpline> interpolate(const Eigen::Ref<const Eigen::MatrixXd>& values) const {
+        if (values.rows() != n_)
+            throw Error("smoothing spline: " + std::to_string(values.rows()) + " rows of values for " +
+                        std::to_string(n_) + " sites");
+        for (Eigen::Index j = 0; j < values.cols(); ++j) checkFinite(values.col(j));
+        if (!interpolationSolvable_) makeSpline(Trial{});  // throws, naming the sites
+        Eigen::MatrixXd c = N_.transpose() * (w_.asDiagonal() * values);
+        for (Eigen::Index j = 0; j < c.cols(); ++j) solveLDLTInPlace(interpolationFactors_, c.col(j).data());
+        const Eigen::MatrixXd residual = values - N_ * c;
+        const Eigen::MatrixXd coefficients = Z_ * c;
+        std::vector<SmoothingSpline> splines;
+        splines.reserve(static_cast<std::size_t>(values.cols()));
+        for (Eigen::Index j = 0; j < values.cols(); ++j) {
+            SmoothingSpline& s = splines.emplace_back(SmoothingSpline());
+            s.halfOrder_ = m_;
+            s.x_ = x_;
+            s.knots_ = knots_;
+            s.coefficients_ = coefficients.col(j);
+            s.meanSquaredResidual_ = residual.col(j).cwiseAbs2().dot(w_) / n_;
+        }
+        return splines;
     }
 
     // p that weighs the roughness like the data term: trace(H) / trace(P).
@@ -281,6 +309,11 @@ public:
     int size() const { return n_; }
 
 private:
+    static void checkFinite(const Eigen::Ref<const Eigen::VectorXd>& y) {
+        for (Eigen::Index i = 0; i < y.size(); ++i)
+            if (!std::isfinite(y(i))) throw Error("smoothing spline: value " + sample("y", i, y(i)) + " is not finite");
+    }
+
     // Z (B-splines x natural basis). At each end only the 2m - 1 B-splines nearest to it have derivatives of
     // order m..2m-2 there; their coefficients must satisfy the m - 1 natural conditions, and an orthonormal
     // basis of that null space (m vectors, from the SVD of the row-normalized conditions) gives m
@@ -428,14 +461,7 @@ std::vector<SmoothingSpline> SmoothingSpline::interpolateColumns(int degree, con
     if (values.rows() != x.size())
         throw Error("smoothing spline: " + std::to_string(values.rows()) + " rows of values for " +
                     std::to_string(x.size()) + " sites");
-    NaturalSplineFitter fitter(degree, x, Eigen::VectorXd(), /*roughness=*/false);
-    std::vector<SmoothingSpline> splines;
-    splines.reserve(static_cast<std::size_t>(values.cols()));
-    for (Eigen::Index j = 0; j < values.cols(); ++j) {
-        fitter.setValues(values.col(j));
-        splines.push_back(fitter.makeSpline(fitter.solve(0)));
-    }
-    return splines;
+    return NaturalSplineFitter(degree, x, Eigen::VectorXd(), /*roughness=*/false).interpolate(values);
 }
 
 double SmoothingSpline::calcValue(double t) const { return calcDerivative(t, 0); }
