@@ -28,10 +28,13 @@ std::string trimRight(const std::string& text) {
     return end == std::string::npos ? std::string() : text.substr(0, end + 1);
 }
 
+bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }  // kBlanks, inline: it runs for every cell
+
 std::string_view trimView(std::string_view text) {
-    const std::size_t end = text.find_last_not_of(kBlanks);
-    if (end == std::string_view::npos) return {};
-    return text.substr(0, end + 1).substr(text.find_first_not_of(kBlanks));
+    std::size_t begin = 0, end = text.size();
+    while (begin < end && isBlank(text[begin])) ++begin;
+    while (end > begin && isBlank(text[end - 1])) --end;
+    return text.substr(begin, end - begin);
 }
 
 std::string trim(const std::string& text) { return std::string(trimView(text)); }
@@ -97,7 +100,9 @@ private:
     bool nextLine(std::string& line) {
         if (!std::getline(in_, line)) return false;
         ++lineNumber_;
-        line = trimRight(line);
+        std::size_t end = line.size();  // trailing blanks only: the leading ones stay
+        while (end > 0 && isBlank(line[end - 1])) --end;
+        line.resize(end);
         return true;
     }
 
