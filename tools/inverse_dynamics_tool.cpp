@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <future>
-#include <utility>
+#include <optional>
 
 #include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/data.hpp"
@@ -15,21 +14,11 @@
 #include "sinew/tools/measured_loads.hpp"
 #include "sinew/tools/motion_frames.hpp"
 #include "sinew/io/model_loading.hpp"
+#include "side_by_side.hpp"
 
 namespace sinew {
 namespace {
 
-// work() while `first` runs on its thread. Should work throw, first's error, if it has one, is the one
-// reported, as it would be were the two run in order.
-template <typename T, typename Work>
-auto runAlongside(std::future<T>& first, Work work) {
-    try {
-        return work();
-    } catch (...) {
-        first.get();
-        throw;
-    }
-}
 
 // One per speed, as OpenSim names them: "<coordinate>_moment" for rotational coordinates, "<coordinate>_force"
 // otherwise; a ball or free joint's angular speeds j_wx.. give j_wx_moment.., a free joint's linear ones
@@ -53,18 +42,19 @@ std::vector<std::string> getGeneralizedForceNames(const Model& model) {
 
 StorageTable runInverseDynamics(const Model& model, const StorageTable& coordinates, const ExternalLoads* loads,
                                 const InverseDynamicsOptions& options) {
-    // The loads' splines (one per data column, over every row of the file) and the coordinates' processing
-    // are independent: the loads are fitted on a second thread.
-    std::future<std::optional<MeasuredLoads>> fitLoads = std::async(std::launch::async, [&] {
-        std::optional<MeasuredLoads> fitted;
-        if (loads) fitted.emplace(model, *loads);
-        return fitted;
-    });
-    // An error in the coordinates, the earlier step, is the one reported (the future waits for the fit).
-    const CoordinateSamples samples = readCoordinateSamples(model, coordinates);
-    const CoordinateTrajectory trajectory = preprocessCoordinateSamples(model, samples, options.lowpassCutoffHz,
-                                                                        options.startTime, options.finalTime);
-    const std::optional<MeasuredLoads> measured = fitLoads.get();
+    // The coordinates' processing and the loads' splines (one per data column, over every row of the file)
+    // are independent.
+    std::optional<CoordinateTrajectory> trajectory;
+    std::optional<MeasuredLoads> measured;
+    runSideBySide(
+        [&] {
+            const CoordinateSamples samples = readCoordinateSamples(model, coordinates);
+            trajectory = preprocessCoordinateSamples(model, samples, options.lowpassCutoffHz, options.startTime,
+                                                     options.finalTime);
+        },
+        [&] {
+            if (loads) measured.emplace(model, *loads);
+        });
 
     StorageTable result;
     result.name = "Inverse Dynamics Generalized Forces";
@@ -73,7 +63,7 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
     Eigen::VectorXd tau(model.getNumU());
     ForceElementLoads elements(model);
     forEachMotionFrame(
-        model, trajectory, measured ? &*measured : nullptr,
+        model, *trajectory, measured ? &*measured : nullptr,
         [&](const MotionFrame& frame) {
             calcInverseDynamics(model, data, frame.q, frame.u, frame.udot, frame.appliedLinkForces, tau);
             if (options.forceElements) elements.subtractFrom(data, tau);
@@ -96,15 +86,17 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
 std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std::string& outputDirectory,
                                    const std::function<void(const std::string&)>& notes,
                                    const std::function<void(int frame, int frames)>& onFrame) {
-    // The .osim and the motion files are read at once: the model on a second thread. Its notes come first,
-    // as they would in order, and so does its error.
-    std::future<Model> modelLoad = std::async(std::launch::async, [&] { return loadModel(setup.modelFile, notes); });
-    const auto [loads, coordinateFile] = runAlongside(modelLoad, [&] {
-        std::optional<ExternalLoads> externalLoads;
-        if (!setup.externalLoadsFile.empty()) externalLoads = readExternalLoads(setup.externalLoadsFile);
-        return std::make_pair(std::move(externalLoads), readStorageFile(setup.coordinatesFile));
-    });
-    const Model model = modelLoad.get();
+    // The model and the motion files are read at once. Only the model's reading sends notes, so they come
+    // out in order.
+    std::optional<Model> loadedModel;
+    std::optional<ExternalLoads> loads;
+    StorageTable coordinateFile;
+    runSideBySide([&] { loadedModel = loadModel(setup.modelFile, notes); },
+                  [&] {
+                      if (!setup.externalLoadsFile.empty()) loads = readExternalLoads(setup.externalLoadsFile);
+                      coordinateFile = readStorageFile(setup.coordinatesFile);
+                  });
+    const Model& model = *loadedModel;
     if (notes) {
         const auto& excluded = setup.forcesToExclude;
         const bool musclesOut = std::any_of(excluded.begin(), excluded.end(), [](const std::string& name) {

@@ -14,6 +14,7 @@
 #include "sinew/io/tool_setup.hpp"
 #include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/inverse_dynamics_tool.hpp"
+#include "support/error_assertions.hpp"
 #include "support/force_element_model.hpp"
 #include "support/test_models.hpp"
 
@@ -103,6 +104,24 @@ TEST(InverseDynamicsTool, AMissingCoordinateIsHeldAtItsDefaultAndAnExtraColumnIs
     for (std::size_t r = 0; r < ours.rows.size(); ++r)
         for (std::size_t c = 0; c < ours.columns.size(); ++c)
             EXPECT_NEAR(ours.rows[r][c], reference.rows[r][c], 1e-12 * (1 + std::abs(reference.rows[r][c])));
+}
+
+// The tool reads the model and the motion files at once; when more than one is bad, the error is the one
+// reading them in turn would give: the model's first, then the external loads', then the coordinates'.
+TEST(InverseDynamicsTool, FilesReadAtOnceReportTheFirstBadOneInTurn) {
+    const std::string folder = ::testing::TempDir();
+    InverseDynamicsSetup setup;
+    setup.modelFile = folder + "/no_such_model.osim";
+    setup.externalLoadsFile = folder + "/no_such_loads.xml";
+    setup.coordinatesFile = folder + "/no_such_motion.mot";
+    const std::string output = folder + "/sinew_id_bad_files";
+    auto run = [&] { runInverseDynamicsTool(setup, output, {}); };
+    EXPECT_TRUE(test::throwsErrorAt(run, setup.modelFile + ":", {"cannot"}, "all three files missing"));
+    setup.modelFile = test::sourcePath("models/arm26.yaml");
+    EXPECT_TRUE(test::throwsErrorAt(run, setup.externalLoadsFile + ":", {"cannot"}, "loads and motion missing"));
+    setup.externalLoadsFile.clear();
+    EXPECT_TRUE(test::throwsErrorAt(run, setup.coordinatesFile + ":", {"cannot"}, "the motion missing"));
+    EXPECT_FALSE(std::filesystem::exists(output));
 }
 
 TEST(InverseDynamicsTool, Gait2354MatchesOpenSim) {
