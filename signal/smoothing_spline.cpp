@@ -108,19 +108,20 @@ bool factorLDLT(SymmetricBand& a) {
     return true;
 }
 
-void solveLDLTInPlace(const SymmetricBand& f, double* x) {
+using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Solves in place for x, a VectorXd or a RowMajorMatrix of many columns. The matrix is solved row by row,
+// a row of all its columns one vector operation, each column's arithmetic that of a one-column solve.
+template <typename Columns>
+void solveLDLT(const SymmetricBand& f, Columns& x) {
     const int n = f.size(), b = f.b;
     for (int i = 0; i < n; ++i)
-        for (int k = std::max(0, i - b); k < i; ++k) x[i] -= f.band(i - k, k) * x[k];
-    for (int i = 0; i < n; ++i) x[i] /= f.band(0, i);
+        for (int k = std::max(0, i - b); k < i; ++k) x.row(i) -= f.band(i - k, k) * x.row(k);
+    for (int i = 0; i < n; ++i) x.row(i) /= f.band(0, i);
     for (int i = n - 1; i >= 0; --i)
-        for (int k = i + 1; k <= std::min(n - 1, i + b); ++k) x[i] -= f.band(k - i, i) * x[k];
+        for (int k = i + 1; k <= std::min(n - 1, i + b); ++k) x.row(i) -= f.band(k - i, i) * x.row(k);
 }
 
-Eigen::VectorXd solveLDLT(const SymmetricBand& f, Eigen::VectorXd x) {
-    solveLDLTInPlace(f, x.data());
-    return x;
-}
 
 // The band of A^-1 from A = L D L^T, by the recurrence A^-1 = D^-1 L^-1 + (I - L^T) A^-1 run from the last
 // row up (Hutchinson and de Hoog 1985; Erisman and Tinney 1975): O(n b^2), never the full inverse.
@@ -244,8 +245,8 @@ public:
                         std::to_string(n_) + " sites");
         for (Eigen::Index j = 0; j < values.cols(); ++j) checkFinite(values.col(j));
         if (!interpolationSolvable_) makeSpline(Trial{});  // throws, naming the sites
-        Eigen::MatrixXd c = N_.transpose() * (w_.asDiagonal() * values);
-        for (Eigen::Index j = 0; j < c.cols(); ++j) solveLDLTInPlace(interpolationFactors_, c.col(j).data());
+        RowMajorMatrix c = N_.transpose() * (w_.asDiagonal() * values);
+        solveLDLT(interpolationFactors_, c);
         const Eigen::MatrixXd residual = values - N_ * c;
         const Eigen::MatrixXd coefficients = Z_ * c;
         std::vector<SmoothingSpline> splines;
@@ -279,7 +280,8 @@ public:
         }
         const SymmetricBand& g = *factors;
         trial.solved = true;
-        trial.c = solveLDLT(g, rhs_);
+        trial.c = rhs_;
+        solveLDLT(g, trial.c);
         const Eigen::VectorXd residual = y_ - N_ * trial.c;
         trial.meanSquaredResidual = residual.cwiseAbs2().dot(w_) / n_;
         trial.residualDegreesOfFreedom = p > 0 ? p * bandOfInverse(g).dot(P_) : 0.0;
