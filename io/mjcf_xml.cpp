@@ -1,7 +1,5 @@
 #include "mjcf_xml.hpp"
 
-#include <tinyxml2.h>
-
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -10,6 +8,7 @@
 
 #include "number_text.hpp"
 #include "sinew/core/error.hpp"
+#include "xml_file.hpp"
 
 namespace sinew::mjcf {
 namespace fs = std::filesystem;
@@ -34,15 +33,10 @@ void XmlElement::fail(const std::string& message) const { throw ModelError(where
 
 namespace {
 
-void loadDocument(tinyxml2::XMLDocument& document, const std::string& path, const std::string& includedAt) {
-    const tinyxml2::XMLError status = document.LoadFile(path.c_str());
-    if (status == tinyxml2::XML_ERROR_FILE_NOT_FOUND || status == tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED ||
-        status == tinyxml2::XML_ERROR_FILE_READ_ERROR)
-        throw ModelError(includedAt.empty() ? path : includedAt, "cannot open '" + path + "' for reading");
-    if (status != tinyxml2::XML_SUCCESS)
-        throw ModelError(path + ":" + std::to_string(document.ErrorLineNum()),
-                         std::string("malformed XML (") + document.ErrorStr() + ")");
-    if (!document.RootElement()) throw ModelError(path, "no XML element in the file");
+// The node itself when it is an element, else its next sibling element (pugixml keeps text among them).
+pugi::xml_node elementFrom(pugi::xml_node node) {
+    while (node && node.type() != pugi::node_element) node = node.next_sibling();
+    return node;
 }
 
 // Expands one document's elements into the tree, following includes into their files.
@@ -51,31 +45,30 @@ public:
     explicit TreeReader(const std::string& mainPath)
         : mainFolder_(fs::path(mainPath).parent_path()), included_{fs::absolute(mainPath).lexically_normal()} {}
 
-    void appendChildren(const tinyxml2::XMLElement& source, const std::string& file, XmlElement& target) {
-        for (const tinyxml2::XMLElement* child = source.FirstChildElement(); child; child = child->NextSiblingElement()) {
-            XmlElement element = convert(*child, file);
-            if (strcasecmp(child->Name(), "include") == 0) {
-                appendIncluded(element, *child, target);
+    void appendChildren(pugi::xml_node source, const XmlFile& file, XmlElement& target) {
+        for (pugi::xml_node child = elementFrom(source.first_child()); child; child = elementFrom(child.next_sibling())) {
+            XmlElement element = convert(child, file);
+            if (strcasecmp(child.name(), "include") == 0) {
+                appendIncluded(element, child, target);
                 continue;
             }
-            appendChildren(*child, file, element);
+            appendChildren(child, file, element);
             target.children.push_back(std::move(element));
         }
     }
 
-    static XmlElement convert(const tinyxml2::XMLElement& source, const std::string& file) {
+    static XmlElement convert(pugi::xml_node source, const XmlFile& file) {
         XmlElement element;
-        element.tag = source.Name();
-        for (const tinyxml2::XMLAttribute* a = source.FirstAttribute(); a; a = a->Next())
-            element.attributes.emplace_back(a->Name(), a->Value());
-        element.file = file;
-        element.line = source.GetLineNum();
+        element.tag = source.name();
+        for (const pugi::xml_attribute& a : source.attributes()) element.attributes.emplace_back(a.name(), a.value());
+        element.file = file.getPath();
+        element.line = file.getLine(source);
         return element;
     }
 
 private:
-    void appendIncluded(const XmlElement& include, const tinyxml2::XMLElement& source, XmlElement& target) {
-        if (source.FirstChild()) include.fail("an include cannot have children");
+    void appendIncluded(const XmlElement& include, pugi::xml_node source, XmlElement& target) {
+        if (source.first_child()) include.fail("an include cannot have children");
         const std::optional<std::string> name = readText(include, "file");
         if (!name || name->empty()) include.fail("needs the file attribute naming the file to include");
         const fs::path path = resolve(include, *name);
@@ -83,12 +76,10 @@ private:
         for (const fs::path& earlier : included_)
             if (earlier == absolute) include.fail("'" + path.string() + "' is already included");
         included_.push_back(absolute);
-        tinyxml2::XMLDocument document;
-        loadDocument(document, path.string(), include.where());
-        if (!document.RootElement()->FirstChildElement())
-            include.fail("'" + path.string() + "' holds no element under its root <" +
-                         document.RootElement()->Name() + ">");
-        appendChildren(*document.RootElement(), path.string(), target);
+        const XmlFile file(path.string(), include.where());
+        if (!elementFrom(file.getRoot().first_child()))
+            include.fail("'" + path.string() + "' holds no element under its root <" + file.getRoot().name() + ">");
+        appendChildren(file.getRoot(), file, target);
     }
 
     fs::path resolve(const XmlElement& include, const std::string& name) const {
@@ -116,13 +107,11 @@ private:
 }  // namespace
 
 XmlElement readMjcfTree(const std::string& path) {
-    tinyxml2::XMLDocument document;
-    loadDocument(document, path, "");
-    const tinyxml2::XMLElement& root = *document.RootElement();
-    XmlElement tree = TreeReader::convert(root, path);
-    if (strcasecmp(root.Name(), "mujoco") != 0)
+    const XmlFile file(path);
+    XmlElement tree = TreeReader::convert(file.getRoot(), file);
+    if (strcasecmp(file.getRoot().name(), "mujoco") != 0)
         throw ModelError(tree.where(), "the root element is <" + tree.tag + ">; an MJCF file has <mujoco>");
-    TreeReader(path).appendChildren(root, path, tree);
+    TreeReader(path).appendChildren(file.getRoot(), file, tree);
     return tree;
 }
 

@@ -8,7 +8,6 @@
 #include <optional>
 #include <string_view>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -69,41 +68,17 @@ void readKnots(const XmlDocument& doc, const Element& element, OsimFunction& fun
                              " follows " + std::to_string(function.x[i - 1]));
 }
 
-std::string readWholeFile(const std::string& path) {
-    std::ifstream file(path, std::ios::binary | std::ios::ate);
-    const std::streamoff size = file.is_open() ? static_cast<std::streamoff>(file.tellg()) : -1;
-    if (size < 0) throw ModelError(path, "cannot open for reading");
-    std::string text(static_cast<std::size_t>(size), '\0');
-    file.seekg(0);
-    if (!file.read(text.data(), size)) throw ModelError(path, "cannot open for reading");
-    return text;
-}
-
 }  // namespace
 
-XmlDocument::XmlDocument(std::string path) : path_(std::move(path)), text_(readWholeFile(path_)) {
-    for (std::size_t i = text_.find('\n'); i != std::string::npos; i = text_.find('\n', i + 1)) newlines_.push_back(i);
-    // In place: pugixml keeps its strings in text_, and the offsets it reports are the file's own.
-    const pugi::xml_parse_result parsed = document_.load_buffer_inplace(text_.data(), text_.size());
-    if (parsed.status == pugi::status_no_document_element) throw ModelError(path_, "no XML element in the file");
-    if (!parsed) {
-        const std::size_t at = static_cast<std::size_t>(std::max<std::ptrdiff_t>(parsed.offset, 0));
-        // The line the parser stopped on, as the file has it (parsing in place has cut text_ into strings).
-        const int line = lineAt(at);
-        const std::string original = readWholeFile(path_);
-        const std::size_t begin = line == 1 ? 0 : newlines_[static_cast<std::size_t>(line - 2)] + 1;
-        const std::size_t end = std::min({original.find('\n', begin), original.size(), begin + 80});
-        throw ModelError(path_ + ":" + std::to_string(line), std::string("malformed XML (") + parsed.description() +
-                                                                  ") at '" + trim(original.substr(begin, end - begin)) + "'");
-    }
-    const pugi::xml_node root = document_.document_element();
+XmlDocument::XmlDocument(std::string path) : file_(std::move(path)) {
+    const pugi::xml_node root = file_.getRoot();
     if (std::string(root.name()) != "OpenSimDocument")
         throw ModelError(where(*root.internal_object()), "the root element is <" + std::string(root.name()) +
                                                              ">; an OpenSim file has <OpenSimDocument>");
     version_ = root.attribute("Version").as_int(0);
 }
 
-const Element& XmlDocument::getRoot() const { return *document_.document_element().internal_object(); }
+const Element& XmlDocument::getRoot() const { return *file_.getRoot().internal_object(); }
 
 const Element& XmlDocument::getObject(const char* type) const {
     const Element* object = findChild(getRoot(), type);
@@ -117,12 +92,8 @@ const Element& XmlDocument::getFirstObject() const {
     return *object;
 }
 
-int XmlDocument::lineAt(std::size_t offset) const {
-    return 1 + static_cast<int>(std::lower_bound(newlines_.begin(), newlines_.end(), offset) - newlines_.begin());
-}
-
 std::string XmlDocument::where(const Element& element) const {
-    return path_ + ":" + std::to_string(lineAt(static_cast<std::size_t>(std::max<std::ptrdiff_t>(nodeOf(element).offset_debug(), 0))));
+    return getPath() + ":" + std::to_string(file_.getLine(nodeOf(element)));
 }
 
 void XmlDocument::fail(const Element& element, const std::string& message) const {
@@ -133,7 +104,7 @@ std::string XmlDocument::resolveFile(const std::string& name) const {
     if (name.empty()) return name;
     const std::filesystem::path file(name);
     if (file.is_absolute()) return file.lexically_normal().string();
-    return (std::filesystem::path(path_).parent_path() / file).lexically_normal().string();
+    return (std::filesystem::path(getPath()).parent_path() / file).lexically_normal().string();
 }
 
 const char* typeOf(const Element& element) { return nodeOf(element).name(); }

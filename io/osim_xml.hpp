@@ -1,14 +1,13 @@
 #pragma once
 // Reading OpenSim XML documents (models, tool setups, external loads, force sets) with pugixml, every value
 // traced to the file and line it came from. Private to sinew_io.
-#include <pugixml.hpp>
-
 #include <Eigen/Core>
 #include <string>
 #include <vector>
 
 #include "sinew/io/osim_actuator.hpp"
 #include "sinew/io/osim_function.hpp"
+#include "xml_file.hpp"
 
 namespace sinew::osim {
 
@@ -23,7 +22,7 @@ public:
     XmlDocument(const XmlDocument&) = delete;
     XmlDocument& operator=(const XmlDocument&) = delete;
 
-    const std::string& getPath() const { return path_; }
+    const std::string& getPath() const { return file_.getPath(); }
     int getVersion() const { return version_; }  // the OpenSimDocument Version attribute, 0 when absent
     // The one child of <OpenSimDocument> of the given type (e.g. "Model"); throws when there is none.
     const Element& getObject(const char* type) const;
@@ -39,12 +38,8 @@ public:
 
 private:
     const Element& getRoot() const;
-    int lineAt(std::size_t offset) const;  // 1-based line of a byte offset into the file
 
-    std::string path_;
-    std::string text_;  // the file, parsed in place: the document's strings point into it
-    std::vector<std::size_t> newlines_;  // offsets of the file's line ends, for where()
-    pugi::xml_document document_;
+    XmlFile file_;
     int version_ = 0;
 };
 

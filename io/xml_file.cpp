@@ -1,0 +1,55 @@
+#include "xml_file.hpp"
+
+#include <algorithm>
+#include <fstream>
+
+#include "sinew/core/error.hpp"
+
+namespace sinew {
+namespace {
+
+std::string readWholeFile(const std::string& path, const std::string& openedAt) {
+    std::ifstream file(path, std::ios::binary | std::ios::ate);
+    const std::streamoff size = file.is_open() ? static_cast<std::streamoff>(file.tellg()) : -1;
+    const std::string where = openedAt.empty() ? path : openedAt;
+    if (size < 0) throw ModelError(where, "cannot open '" + path + "' for reading");
+    std::string text(static_cast<std::size_t>(size), '\0');
+    file.seekg(0);
+    if (!file.read(text.data(), size)) throw ModelError(where, "cannot open '" + path + "' for reading");
+    return text;
+}
+
+std::string trimmed(const std::string& text) {
+    const char* const blanks = " \t\r\n";
+    const std::size_t begin = text.find_first_not_of(blanks);
+    return begin == std::string::npos ? "" : text.substr(begin, text.find_last_not_of(blanks) - begin + 1);
+}
+
+}  // namespace
+
+XmlFile::XmlFile(std::string path, const std::string& openedAt)
+    : path_(std::move(path)), text_(readWholeFile(path_, openedAt)) {
+    for (std::size_t i = text_.find('\n'); i != std::string::npos; i = text_.find('\n', i + 1)) newlines_.push_back(i);
+    // In place: no copy of the file, and the offsets pugixml reports are the file's own.
+    const pugi::xml_parse_result parsed = document_.load_buffer_inplace(text_.data(), text_.size());
+    if (parsed.status == pugi::status_no_document_element) throw ModelError(path_, "no XML element in the file");
+    if (!parsed) {
+        const int line = lineAt(static_cast<std::size_t>(std::max<std::ptrdiff_t>(parsed.offset, 0)));
+        // The line as the file has it: parsing in place has cut text_ into strings.
+        const std::string original = readWholeFile(path_, openedAt);
+        const std::size_t begin = line == 1 ? 0 : newlines_[static_cast<std::size_t>(line - 2)] + 1;
+        const std::size_t end = std::min({original.find('\n', begin), original.size(), begin + 80});
+        throw ModelError(path_ + ":" + std::to_string(line), std::string("malformed XML (") + parsed.description() +
+                                                                  ") at '" + trimmed(original.substr(begin, end - begin)) + "'");
+    }
+}
+
+int XmlFile::lineAt(std::size_t offset) const {
+    return 1 + static_cast<int>(std::lower_bound(newlines_.begin(), newlines_.end(), offset) - newlines_.begin());
+}
+
+int XmlFile::getLine(pugi::xml_node node) const {
+    return lineAt(static_cast<std::size_t>(std::max<std::ptrdiff_t>(node.offset_debug(), 0)));
+}
+
+}  // namespace sinew

@@ -1,0 +1,34 @@
+#pragma once
+// One XML file parsed with pugixml, in place, with the line of each of its elements: pugixml keeps only
+// byte offsets, and every reader of sinew's reports errors at file:line. The OpenSim and MJCF readers both
+// load their files through it. Private to sinew_io.
+#include <pugixml.hpp>
+
+#include <string>
+#include <vector>
+
+namespace sinew {
+
+class XmlFile {
+public:
+    // Reads and parses `path`. Throws ModelError: "cannot open" at `openedAt` (the element that named the
+    // file, "file:line") or at the path when openedAt is empty; malformed XML at the line where the parser
+    // stopped, quoting that line; a file without an element.
+    explicit XmlFile(std::string path, const std::string& openedAt = "");
+    XmlFile(const XmlFile&) = delete;
+    XmlFile& operator=(const XmlFile&) = delete;
+
+    const std::string& getPath() const { return path_; }
+    pugi::xml_node getRoot() const { return document_.document_element(); }
+    int getLine(pugi::xml_node node) const;  // 1-based; the element's opening tag
+
+private:
+    int lineAt(std::size_t offset) const;
+
+    std::string path_;
+    std::string text_;                   // the file; the document's strings point into it
+    std::vector<std::size_t> newlines_;  // offsets of the file's line ends
+    pugi::xml_document document_;
+};
+
+}  // namespace sinew
