@@ -33,12 +33,6 @@ void XmlElement::fail(const std::string& message) const { throw ModelError(where
 
 namespace {
 
-// The node itself when it is an element, else its next sibling element (pugixml keeps text among them).
-pugi::xml_node elementFrom(pugi::xml_node node) {
-    while (node && node.type() != pugi::node_element) node = node.next_sibling();
-    return node;
-}
-
 // Expands one document's elements into the tree, following includes into their files.
 class TreeReader {
 public:
@@ -46,7 +40,7 @@ public:
         : mainFolder_(fs::path(mainPath).parent_path()), included_{fs::absolute(mainPath).lexically_normal()} {}
 
     void appendChildren(pugi::xml_node source, const XmlFile& file, XmlElement& target) {
-        for (pugi::xml_node child = elementFrom(source.first_child()); child; child = elementFrom(child.next_sibling())) {
+        for (pugi::xml_node child = firstChildElement(source); child; child = nextSiblingElement(child)) {
             XmlElement element = convert(child, file);
             if (strcasecmp(child.name(), "include") == 0) {
                 appendIncluded(element, child, target);
@@ -77,7 +71,7 @@ private:
             if (earlier == absolute) include.fail("'" + path.string() + "' is already included");
         included_.push_back(absolute);
         const XmlFile file(path.string(), include.where());
-        if (!elementFrom(file.getRoot().first_child()))
+        if (!firstChildElement(file.getRoot()))
             include.fail("'" + path.string() + "' holds no element under its root <" + file.getRoot().name() + ">");
         appendChildren(file.getRoot(), file, target);
     }

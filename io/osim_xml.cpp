@@ -46,12 +46,6 @@ const std::map<std::string, OsimFunctionType>& functionTypes() {
 
 pugi::xml_node nodeOf(const Element& element) { return pugi::xml_node(const_cast<Element*>(&element)); }
 
-// The node itself when it is an element, else its next sibling element (pugixml keeps text among them).
-const Element* elementFrom(pugi::xml_node node) {
-    while (node && node.type() != pugi::node_element) node = node.next_sibling();
-    return node.internal_object();
-}
-
 // Knots of a spline or piecewise-linear function: x and y of one size >= 2, x strictly increasing.
 void readKnots(const XmlDocument& doc, const Element& element, OsimFunction& function) {
     const Element* x = findChild(element, "x");
@@ -109,10 +103,10 @@ std::string XmlDocument::resolveFile(const std::string& name) const {
 
 const char* typeOf(const Element& element) { return nodeOf(element).name(); }
 
-const Element* firstChild(const Element& owner) { return elementFrom(nodeOf(owner).first_child()); }
+const Element* firstChild(const Element& owner) { return firstChildElement(nodeOf(owner)).internal_object(); }
 
 const Element* nextSibling(const Element& element, const char* type) {
-    return type ? nodeOf(element).next_sibling(type).internal_object() : elementFrom(nodeOf(element).next_sibling());
+    return (type ? nodeOf(element).next_sibling(type) : nextSiblingElement(nodeOf(element))).internal_object();
 }
 
 std::string textOf(const Element& element) { return trim(nodeOf(element).child_value()); }

@@ -25,7 +25,17 @@ std::string trimmed(const std::string& text) {
     return begin == std::string::npos ? "" : text.substr(begin, text.find_last_not_of(blanks) - begin + 1);
 }
 
+// The node itself when it is an element, else its next sibling element.
+pugi::xml_node elementFrom(pugi::xml_node node) {
+    while (node && node.type() != pugi::node_element) node = node.next_sibling();
+    return node;
+}
+
 }  // namespace
+
+pugi::xml_node firstChildElement(pugi::xml_node node) { return elementFrom(node.first_child()); }
+
+pugi::xml_node nextSiblingElement(pugi::xml_node node) { return elementFrom(node.next_sibling()); }
 
 XmlFile::XmlFile(std::string path, const std::string& openedAt)
     : path_(std::move(path)), text_(readWholeFile(path_, openedAt)) {

@@ -31,4 +31,9 @@ private:
     pugi::xml_document document_;
 };
 
+// The first child element of `node`, and its next sibling element: pugixml keeps the text between
+// elements as nodes of their own. Null when there is none.
+pugi::xml_node firstChildElement(pugi::xml_node node);
+pugi::xml_node nextSiblingElement(pugi::xml_node node);
+
 }  // namespace sinew
