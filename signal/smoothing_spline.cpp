@@ -122,7 +122,6 @@ void solveLDLT(const SymmetricBand& f, Columns& x) {
         for (int k = i + 1; k <= std::min(n - 1, i + b); ++k) x.row(i) -= f.band(k - i, i) * x.row(k);
 }
 
-
 // The band of A^-1 from A = L D L^T, by the recurrence A^-1 = D^-1 L^-1 + (I - L^T) A^-1 run from the last
 // row up (Hutchinson and de Hoog 1985; Erisman and Tinney 1975): O(n b^2), never the full inverse.
 SymmetricBand bandOfInverse(const SymmetricBand& f) {

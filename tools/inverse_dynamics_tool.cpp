@@ -19,7 +19,6 @@
 namespace sinew {
 namespace {
 
-
 // One per speed, as OpenSim names them: "<coordinate>_moment" for rotational coordinates, "<coordinate>_force"
 // otherwise; a ball or free joint's angular speeds j_wx.. give j_wx_moment.., a free joint's linear ones
 // j_vx_force...
