@@ -52,6 +52,28 @@ XmlFile::XmlFile(std::string path, const std::string& openedAt)
         throw ModelError(path_ + ":" + std::to_string(line), std::string("malformed XML (") + parsed.description() +
                                                                   ") at '" + trimmed(original.substr(begin, end - begin)) + "'");
     }
+    checkDepth();
+}
+
+void XmlFile::checkDepth() const {
+    // Depth first without recursion: down to the first child, else on to the next sibling of the node or
+    // of its nearest ancestor that has one.
+    pugi::xml_node node = document_.first_child();
+    for (int depth = 1; node;) {
+        if (depth > kMaxElementDepth && node.type() == pugi::node_element)
+            throw ModelError(path_ + ":" + std::to_string(getLine(node)),
+                             "<" + std::string(node.name()) + "> is nested " + std::to_string(depth) +
+                                 " elements deep; sinew reads XML up to " + std::to_string(kMaxElementDepth) + " deep");
+        if (const pugi::xml_node child = node.first_child()) {
+            node = child, ++depth;
+            continue;
+        }
+        while (!node.next_sibling()) {
+            node = node.parent(), --depth;
+            if (depth == 0) return;  // back at the document
+        }
+        node = node.next_sibling();
+    }
 }
 
 int XmlFile::lineAt(std::size_t offset) const {

@@ -11,9 +11,14 @@ namespace sinew {
 
 class XmlFile {
 public:
+    // tinyxml2's limit, kept: sinew's readers recurse through the elements (an MJCF body tree), and pugixml,
+    // which does not, would hand them a document deep enough to overflow the stack.
+    static constexpr int kMaxElementDepth = 500;
+
     // Reads and parses `path`. Throws ModelError: "cannot open" at `openedAt` (the element that named the
     // file, "file:line") or at the path when openedAt is empty; malformed XML at the line where the parser
-    // stopped, quoting that line; a file without an element.
+    // stopped, quoting that line; a file without an element; elements nested deeper than kMaxElementDepth,
+    // at the first too deep.
     explicit XmlFile(std::string path, const std::string& openedAt = "");
     XmlFile(const XmlFile&) = delete;
     XmlFile& operator=(const XmlFile&) = delete;
@@ -24,6 +29,7 @@ public:
 
 private:
     int lineAt(std::size_t offset) const;
+    void checkDepth() const;
 
     std::string path_;
     std::string text_;                   // the file; the document's strings point into it

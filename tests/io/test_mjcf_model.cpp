@@ -687,6 +687,15 @@ TEST(MjcfModel, RefusesInfiniteAndMalformedNumbers) {
     expectRefusal("  <option gravity=\"0 0 -9.8.1\"/>\n", "<option", {"option", "'-9.8.1' is not a number"});
 }
 
+// pugixml parses any depth without recursion, but the readers recurse through the elements: a document
+// deeper than XmlFile::kMaxElementDepth (500, tinyxml2's limit) is refused at its first element too deep.
+TEST(MjcfModel, RefusesElementsNestedTooDeep) {
+    std::string bodies;
+    for (int i = 0; i < 20000; ++i) bodies += "<body>";
+    for (int i = 0; i < 20000; ++i) bodies += "</body>";
+    expectRefusal("  <worldbody>" + bodies + "</worldbody>\n", "<body><body>", {"<body>", "nested 501 elements deep", "500"});
+}
+
 TEST(MjcfModel, RefusesNegativeMass) {
     expectRefusal("  <worldbody>\n    <body name=\"b\">\n      <inertial pos=\"0 0 0\" mass=\"-1\" diaginertia=\"1 1 1\"/>\n"
                   "    </body>\n  </worldbody>\n", "<inertial", {"inertial", "mass", "negative"});

@@ -488,6 +488,15 @@ TEST(OsimModel, FramesOffsetInALoop) {
                         "name=\"a_site\"", {"loop"}));
 }
 
+// As MjcfModel.RefusesElementsNestedTooDeep: the .osim reader loads its files the same way.
+TEST(OsimModel, ElementsNestedTooDeep) {
+    std::string nested;
+    for (int i = 0; i < 600; ++i) nested += "<a>";
+    for (int i = 0; i < 600; ++i) nested += "</a>";
+    EXPECT_TRUE(rejects("<Body name=\"c\"><mass>1</mass>", "<Body name=\"c\"><mass>1</mass>" + nested, "<a><a>",
+                        {"<a>", "nested 501 elements deep", "500"}));
+}
+
 TEST(OsimModel, MalformedXmlAndOldVersions) {
     EXPECT_TRUE(rejects("</BallJoint>", "</Ball>", "</Ball>", {"malformed XML", "mismatch", "</Ball>"}));
     EXPECT_TRUE(rejects("Version=\"40000\"", "Version=\"30000\"", "<Model", {"Version 30000", "OpenSim 4"}));
