@@ -109,7 +109,7 @@ const Element* nextSibling(const Element& element, const char* type) {
     return (type ? nodeOf(element).next_sibling(type) : nextSiblingElement(nodeOf(element))).internal_object();
 }
 
-std::string textOf(const Element& element) { return trim(nodeOf(element).child_value()); }
+std::string textOf(const Element& element) { return trimXmlSpace(nodeOf(element).child_value()); }
 
 std::string describe(const Element& element) {
     const std::string name = getName(element);
@@ -117,13 +117,6 @@ std::string describe(const Element& element) {
 }
 
 std::string getName(const Element& element) { return nodeOf(element).attribute("name").value(); }
-
-std::string trim(const std::string& text) {
-    const char* const blanks = " \t\r\n";
-    const std::size_t begin = text.find_first_not_of(blanks);
-    if (begin == std::string::npos) return "";
-    return text.substr(begin, text.find_last_not_of(blanks) - begin + 1);
-}
 
 const Element* findChild(const Element& owner, const char* property) { return nodeOf(owner).child(property).internal_object(); }
 

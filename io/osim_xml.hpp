@@ -55,7 +55,6 @@ std::string textOf(const Element& element);
 // "<Type name='x'>" or "<Type>", for messages.
 std::string describe(const Element& element);
 std::string getName(const Element& element);  // the name attribute, "" when absent
-std::string trim(const std::string& text);
 
 // Properties: the child element `property` of `owner`, its text trimmed. Absent properties give the
 // fallback; present ones that do not parse throw at their line.

@@ -21,22 +21,24 @@
 namespace sinew {
 namespace {
 
-const char* const kBlanks = " \t\r";
+// A blank of a storage line: space, tab, or the CR of a CRLF line end. A plain test, not a search of a
+// character set: it runs for every cell.
+bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
-std::string trimRight(const std::string& text) {
-    const std::size_t end = text.find_last_not_of(kBlanks);
-    return end == std::string::npos ? std::string() : text.substr(0, end + 1);
+std::string_view trimRightView(std::string_view text) {
+    std::size_t end = text.size();
+    while (end > 0 && isBlank(text[end - 1])) --end;
+    return text.substr(0, end);
 }
-
-bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r'; }  // kBlanks, inline: it runs for every cell
 
 std::string_view trimView(std::string_view text) {
-    std::size_t begin = 0, end = text.size();
-    while (begin < end && isBlank(text[begin])) ++begin;
-    while (end > begin && isBlank(text[end - 1])) --end;
-    return text.substr(begin, end - begin);
+    text = trimRightView(text);
+    std::size_t begin = 0;
+    while (begin < text.size() && isBlank(text[begin])) ++begin;
+    return text.substr(begin);
 }
 
+std::string trimRight(const std::string& text) { return std::string(trimRightView(text)); }
 std::string trim(const std::string& text) { return std::string(trimView(text)); }
 
 bool isSpace(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
@@ -100,9 +102,7 @@ private:
     bool nextLine(std::string& line) {
         if (!std::getline(in_, line)) return false;
         ++lineNumber_;
-        std::size_t end = line.size();  // trailing blanks only: the leading ones stay
-        while (end > 0 && isBlank(line[end - 1])) --end;
-        line.resize(end);
+        line.resize(trimRightView(line).size());  // trailing blanks only: the leading ones stay
         return true;
     }
 

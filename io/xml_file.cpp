@@ -19,12 +19,6 @@ std::string readWholeFile(const std::string& path, const std::string& openedAt) 
     return text;
 }
 
-std::string trimmed(const std::string& text) {
-    const char* const blanks = " \t\r\n";
-    const std::size_t begin = text.find_first_not_of(blanks);
-    return begin == std::string::npos ? "" : text.substr(begin, text.find_last_not_of(blanks) - begin + 1);
-}
-
 // The node itself when it is an element, else its next sibling element.
 pugi::xml_node elementFrom(pugi::xml_node node) {
     while (node && node.type() != pugi::node_element) node = node.next_sibling();
@@ -32,6 +26,12 @@ pugi::xml_node elementFrom(pugi::xml_node node) {
 }
 
 }  // namespace
+
+std::string trimXmlSpace(const std::string& text) {
+    const char* const blanks = " \t\r\n";
+    const std::size_t begin = text.find_first_not_of(blanks);
+    return begin == std::string::npos ? "" : text.substr(begin, text.find_last_not_of(blanks) - begin + 1);
+}
 
 pugi::xml_node firstChildElement(pugi::xml_node node) { return elementFrom(node.first_child()); }
 
@@ -50,7 +50,7 @@ XmlFile::XmlFile(std::string path, const std::string& openedAt)
         const std::size_t begin = line == 1 ? 0 : newlines_[static_cast<std::size_t>(line - 2)] + 1;
         const std::size_t end = std::min({original.find('\n', begin), original.size(), begin + 80});
         throw ModelError(path_ + ":" + std::to_string(line), std::string("malformed XML (") + parsed.description() +
-                                                                  ") at '" + trimmed(original.substr(begin, end - begin)) + "'");
+                                                                  ") at '" + trimXmlSpace(original.substr(begin, end - begin)) + "'");
     }
     checkDepth();
 }

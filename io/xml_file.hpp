@@ -37,6 +37,9 @@ private:
     pugi::xml_document document_;
 };
 
+// `text` without the white space XML allows around it (space, tab, CR, LF).
+std::string trimXmlSpace(const std::string& text);
+
 // The first child element of `node`, and its next sibling element: pugixml keeps the text between
 // elements as nodes of their own. Null when there is none.
 pugi::xml_node firstChildElement(pugi::xml_node node);

@@ -236,12 +236,10 @@ public:
         rhs_ = N_.transpose() * w_.cwiseProduct(y_);
     }
 
-    // The interpolant (p = 0) of every column of `values`, each column's arithmetic that of setValues and
-    // solve(0), but each sparse product done once for the whole table.
+    // The interpolant (p = 0) of every column of `values` (one row per site, as interpolateColumns checks),
+    // each column's arithmetic that of setValues and solve(0), but each sparse product done once for the
+    // whole table.
     std::vector<SmoothingSpline> interpolate(const Eigen::Ref<const Eigen::MatrixXd>& values) const {
-        if (values.rows() != n_)
-            throw Error("smoothing spline: " + std::to_string(values.rows()) + " rows of values for " +
-                        std::to_string(n_) + " sites");
         for (Eigen::Index j = 0; j < values.cols(); ++j) checkFinite(values.col(j));
         if (!interpolationSolvable_) makeSpline(Trial{});  // throws, naming the sites
         RowMajorMatrix c = N_.transpose() * (w_.asDiagonal() * values);
