@@ -105,9 +105,11 @@ void padAndFilter(Eigen::VectorXd& times, Eigen::MatrixXd& values, double cutoff
         // times carry the same rounding as OpenSim's output.
         std::vector<double> grid;
         for (double t = times(0); t <= times(rows - 1); t += out.samplePeriod) grid.push_back(t);
-        Eigen::MatrixXd resampled(static_cast<Eigen::Index>(grid.size()), values.cols());
-        for (Eigen::Index i = 0; i < resampled.rows(); ++i)
-            for (Eigen::Index j = 0; j < values.cols(); ++j) resampled(i, j) = splines[j].calcValue(grid[i]);
+        Eigen::MatrixXd resampled(static_cast<Eigen::Index>(grid.size()), values.cols()), row(1, values.cols());
+        for (Eigen::Index i = 0; i < resampled.rows(); ++i) {
+            SmoothingSpline::calcDerivatives(splines.data(), splines.size(), grid[static_cast<std::size_t>(i)], 0, row.data());
+            resampled.row(i) = row;
+        }
         times = Eigen::Map<const Eigen::VectorXd>(grid.data(), resampled.rows());
         values = std::move(resampled);
         out.resampled = true;
@@ -144,12 +146,13 @@ CoordinateTrajectory preprocessCoordinates(const Eigen::VectorXd& times, const E
     out.q.resize(frames, values.cols());
     out.qdot.resize(frames, values.cols());
     out.qddot.resize(frames, values.cols());
-    for (Eigen::Index j = 0; j < values.cols(); ++j)
-        for (Eigen::Index i = 0; i < frames; ++i) {
-            out.q(i, j) = out.splines[j].calcValue(out.times(i));
-            out.qdot(i, j) = out.splines[j].calcDerivative(out.times(i), 1);
-            out.qddot(i, j) = out.splines[j].calcDerivative(out.times(i), 2);
-        }
+    Eigen::MatrixXd derivatives(3, values.cols());
+    for (Eigen::Index i = 0; i < frames; ++i) {
+        SmoothingSpline::calcDerivatives(out.splines.data(), out.splines.size(), out.times(i), 2, derivatives.data());
+        out.q.row(i) = derivatives.row(0);
+        out.qdot.row(i) = derivatives.row(1);
+        out.qddot.row(i) = derivatives.row(2);
+    }
     return out;
 }
 

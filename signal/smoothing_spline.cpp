@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,37 +21,64 @@ using Window = std::array<double, kMaxOrder>;
 using SparseMatrix = Eigen::SparseMatrix<double>;
 using Triplets = std::vector<Eigen::Triplet<double>>;
 
-// The `derivative`-th derivative at t of sum_j a_j B_j, the B-splines of `order` on `knots`, where t lies
-// in the knot span [knots[span], knots[span+1]) (or at its right end) and window[r] = a_{span-order+1+r}.
-// The coefficients are differenced once per derivative (each lowers the order by one), then de Boor's
-// recurrence evaluates the lower-order spline (de Boor, A Practical Guide to Splines, ch. X).
-double evalOnSpan(const Eigen::VectorXd& knots, int order, int span, Window a, double t, int derivative) {
-    if (derivative >= order) return 0;
-    const int first = span - order + 1;  // global index of window[0]
-    for (int q = 1; q <= derivative; ++q)
-        for (int r = order - 1; r >= q; --r) {
-            const int j = first + r;
-            a[r] = (order - q) * (a[r] - a[r - 1]) / (knots(j + order - q) - knots(j));
-        }
-    const int reduced = order - derivative;
-    for (int level = 1; level < reduced; ++level)
-        for (int r = order - 1; r >= derivative + level; --r) {
-            const int j = first + r;
-            const double alpha = (t - knots(j)) / (knots(j + reduced - level) - knots(j));
-            a[r] = (1 - alpha) * a[r - 1] + alpha * a[r];
-        }
-    return a[order - 1];
-}
+// The values and derivatives up to `highest` (< order) at t of the `order` B-splines that do not vanish on
+// the knot span [knots[span], knots[span+1]] (t in it, or at its right end): table[d][r] is the d-th
+// derivative of B_{span-order+1+r}. One triangle of the Cox-de Boor recurrence gives every value at once,
+// and the derivatives come from its lower orders' entries (Piegl and Tiller, The NURBS Book, 2nd ed.,
+// algorithm A2.3): O(order^2) per derivative, where a unit-vector de Boor pass per basis function costs
+// O(order^3). Knot differences on the span are positive, so no division by zero.
+using BasisTable = std::array<Window, kMaxOrder>;
 
-// The order-many B-splines that do not vanish on `span`, each differentiated `derivative` times, at t.
-Window basisOnSpan(const Eigen::VectorXd& knots, int order, int span, double t, int derivative) {
-    Window values{};
-    for (int r = 0; r < order; ++r) {
-        Window unit{};
-        unit[r] = 1;
-        values[r] = evalOnSpan(knots, order, span, unit, t, derivative);
+BasisTable basisOnSpan(const Eigen::VectorXd& knots, int order, int span, double t, int highest) {
+    const int p = order - 1;
+    // ndu[j][r], r <= j: the knot differences of order j; r > j: the values of the order-(r+1) B-splines
+    std::array<Window, kMaxOrder> ndu;
+    Window left{}, right{};
+    ndu[0][0] = 1;
+    for (int j = 1; j <= p; ++j) {
+        left[j] = t - knots(span + 1 - j);
+        right[j] = knots(span + j) - t;
+        double saved = 0;
+        for (int r = 0; r < j; ++r) {
+            ndu[j][r] = right[r + 1] + left[j - r];
+            const double temp = ndu[r][j - 1] / ndu[j][r];
+            ndu[r][j] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        ndu[j][j] = saved;
     }
-    return values;
+    BasisTable table{};
+    for (int r = 0; r <= p; ++r) table[0][r] = ndu[r][p];
+    std::array<Window, 2> a;
+    for (int r = 0; r <= p; ++r) {
+        int s1 = 0, s2 = 1;
+        a[0][0] = 1;
+        for (int k = 1; k <= highest; ++k) {
+            double d = 0;
+            const int rk = r - k, pk = p - k;
+            if (r >= k) {
+                a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
+                d = a[s2][0] * ndu[rk][pk];
+            }
+            const int j1 = rk >= -1 ? 1 : -rk, j2 = r - 1 <= pk ? k - 1 : p - r;
+            for (int j = j1; j <= j2; ++j) {
+                a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rk + j];
+                d += a[s2][j] * ndu[rk + j][pk];
+            }
+            if (r <= pk) {
+                a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+                d += a[s2][k] * ndu[r][pk];
+            }
+            table[k][r] = d;
+            std::swap(s1, s2);
+        }
+    }
+    double factor = p;
+    for (int k = 1; k <= highest; ++k) {
+        for (int r = 0; r <= p; ++r) table[k][r] *= factor;
+        factor *= p - k;
+    }
+    return table;
 }
 
 // The knot span holding t for sites x: interval i = [x_i, x_{i+1}) is span order - 1 + i; the last
@@ -204,7 +233,7 @@ public:
         Triplets collocation;
         for (int i = 0; i < n_; ++i) {
             const int span = findSpan(x_, order, x_(i));
-            const Window values = basisOnSpan(knots_, order, span, x_(i), 0);
+            const Window values = basisOnSpan(knots_, order, span, x_(i), 0)[0];
             for (int r = 0; r < order; ++r)
                 if (values[r] != 0) collocation.emplace_back(i, span - order + 1 + r, values[r]);
         }
@@ -226,6 +255,7 @@ public:
             interpolationSolvable_ = factorLDLT(interpolationFactors_);
         }
         Z_ = Z;
+        sites_ = std::make_shared<const SmoothingSpline::Sites>(SmoothingSpline::Sites{x_, knots_});
     }
 
     void setValues(const Eigen::Ref<const Eigen::VectorXd>& y) {
@@ -251,8 +281,7 @@ public:
         for (Eigen::Index j = 0; j < values.cols(); ++j) {
             SmoothingSpline& s = splines.emplace_back(SmoothingSpline());
             s.halfOrder_ = m_;
-            s.x_ = x_;
-            s.knots_ = knots_;
+            s.sites_ = sites_;
             s.coefficients_ = coefficients.col(j);
             s.meanSquaredResidual_ = residual.col(j).cwiseAbs2().dot(w_) / n_;
         }
@@ -296,8 +325,7 @@ public:
         }
         SmoothingSpline s;
         s.halfOrder_ = m_;
-        s.x_ = x_;
-        s.knots_ = knots_;
+        s.sites_ = sites_;
         s.coefficients_ = Z_ * trial.c;
         s.smoothingParameter_ = trial.p;
         s.meanSquaredResidual_ = trial.meanSquaredResidual;
@@ -329,8 +357,9 @@ private:
             auto global = [&](int s) { return left ? s : count - 1 - s; };
             auto column = [&](int s) { return left ? s : n_ - 1 - s; };
             Eigen::MatrixXd conditions = Eigen::MatrixXd::Zero(std::max(m_ - 1, 1), 2 * m_ - 1);
+            const BasisTable derivatives = basisOnSpan(knots_, order, span, end, 2 * m_ - 2);
             for (int q = 0; q < m_ - 1; ++q) {
-                const Window d = basisOnSpan(knots_, order, span, end, m_ + q);
+                const Window& d = derivatives[static_cast<std::size_t>(m_ + q)];
                 for (int s = 0; s < 2 * m_ - 1; ++s) conditions(q, s) = d[global(s) - (span - order + 1)];
                 conditions.row(q).normalize();
             }
@@ -352,7 +381,7 @@ private:
             const int span = order - 1 + i, first = span - order + 1;
             const double half = (x_(i + 1) - x_(i)) / 2;
             for (const auto& [node, weight] : rule) {
-                const Window d = basisOnSpan(knots_, order, span, x_(i) + half * (1 + node), m_);
+                const Window d = basisOnSpan(knots_, order, span, x_(i) + half * (1 + node), m_)[static_cast<std::size_t>(m_)];
                 for (int r = 0; r < order; ++r)
                     for (int s = 0; s < order; ++s) omega.emplace_back(first + r, first + s, weight * half * d[r] * d[s]);
             }
@@ -369,6 +398,7 @@ private:
     Eigen::VectorXd x_, y_, w_, knots_, rhs_;
     SparseMatrix Z_, N_;
     SymmetricBand H_, P_;
+    std::shared_ptr<const SmoothingSpline::Sites> sites_;  // what the fitted splines share
 };
 
 namespace {
@@ -463,37 +493,99 @@ std::vector<SmoothingSpline> SmoothingSpline::interpolateColumns(int degree, con
     return NaturalSplineFitter(degree, x, Eigen::VectorXd(), /*roughness=*/false).interpolate(values);
 }
 
-double SmoothingSpline::calcValue(double t) const { return calcDerivative(t, 0); }
+namespace {
+
+// Where t lies among a spline's sites and its B-splines' derivatives there: what every spline on the same
+// sites shares. Outside the sites the natural continuation is the Taylor polynomial of degree m - 1 at the
+// end, so only derivatives below m are taken there.
+struct SpanEvaluation {
+    int order = 0, span = 0, computed = 0;  // computed: the highest derivative evaluated
+    bool outside = false;
+    double end = 0, t = 0;
+    BasisTable basis;
+
+    SpanEvaluation(const Eigen::VectorXd& x, const Eigen::VectorXd& knots, int m, double time, int highest)
+        : order(2 * m), t(time) {
+        if (highest < 0) throw Error("smoothing spline: derivative order " + std::to_string(highest) + "; expected >= 0");
+        if (!std::isfinite(t)) throw Error("smoothing spline: evaluated at a non-finite time");
+        const Eigen::Index n = x.size();
+        outside = t < x(0) || t > x(n - 1);
+        end = t < x(0) ? x(0) : x(n - 1);
+        const double at = outside ? end : t;
+        span = findSpan(x, order, at);
+        computed = outside ? m - 1 : std::min(order - 1, highest);
+        basis = basisOnSpan(knots, order, span, at, computed);
+    }
+
+    // derivatives[0..highest] of the spline with these B-spline coefficients.
+    void apply(const Eigen::VectorXd& coefficients, int highest, double* derivatives) const {
+        const double* window = coefficients.data() + (span - order + 1);
+        std::array<double, kMaxOrder> atSpan{};
+        for (int d = 0; d <= computed; ++d) {
+            const Window& b = basis[static_cast<std::size_t>(d)];
+            double sum = 0;
+            for (int r = 0; r < order; ++r) sum += b[static_cast<std::size_t>(r)] * window[r];
+            atSpan[static_cast<std::size_t>(d)] = sum;
+        }
+        for (int d = 0; d <= highest; ++d) {
+            double value = 0;
+            if (!outside) {
+                value = d <= computed ? atSpan[static_cast<std::size_t>(d)] : 0.0;
+            } else {
+                double term = 1;
+                for (int j = d; j <= computed; ++j) {
+                    value += atSpan[static_cast<std::size_t>(j)] * term;
+                    term *= (t - end) / (j - d + 1);
+                }
+            }
+            derivatives[d] = value;
+        }
+    }
+};
+
+}  // namespace
+
+double SmoothingSpline::calcValue(double t) const {
+    double value = 0;
+    calcDerivatives(t, 0, &value);
+    return value;
+}
 
 double SmoothingSpline::calcDerivative(double t, int order) const {
     if (order < 0) throw Error("smoothing spline: derivative order " + std::to_string(order) + "; expected >= 0");
-    if (!std::isfinite(t)) throw Error("smoothing spline: evaluated at a non-finite time");
-    const int k = 2 * halfOrder_;
-    const Eigen::Index n = x_.size();
-    const bool before = t < x_(0), after = t > x_(n - 1);
-    const int span = findSpan(x_, k, before ? x_(0) : after ? x_(n - 1) : t);
-    Window window{};
-    for (int r = 0; r < k; ++r) window[r] = coefficients_(span - k + 1 + r);
-    if (!before && !after) return evalOnSpan(knots_, k, span, window, t, order);
-    // Natural continuation: the Taylor polynomial of degree m - 1 at the end.
-    const double end = before ? x_(0) : x_(n - 1);
-    double sum = 0, term = 1;
-    for (int j = order; j < halfOrder_; ++j) {
-        sum += evalOnSpan(knots_, k, span, window, end, j) * term;
-        term *= (t - end) / (j - order + 1);
+    if (order >= 2 * halfOrder_) {
+        if (!std::isfinite(t)) throw Error("smoothing spline: evaluated at a non-finite time");
+        return 0;
     }
-    return sum;
+    std::array<double, kMaxOrder> derivatives;
+    calcDerivatives(t, order, derivatives.data());
+    return derivatives[static_cast<std::size_t>(order)];
+}
+
+void SmoothingSpline::calcDerivatives(double t, int highest, double* derivatives) const {
+    SpanEvaluation(sites_->x, sites_->knots, halfOrder_, t, highest).apply(coefficients_, highest, derivatives);
+}
+
+void SmoothingSpline::calcDerivatives(const SmoothingSpline* splines, std::size_t count, double t, int highest,
+                                      double* derivatives) {
+    std::optional<SpanEvaluation> shared;
+    for (std::size_t j = 0; j < count; ++j) {
+        const SmoothingSpline& s = splines[j];
+        const bool sameSites = j > 0 && s.sites_ == splines[j - 1].sites_ && s.halfOrder_ == splines[j - 1].halfOrder_;
+        if (!sameSites) shared.emplace(s.sites_->x, s.sites_->knots, s.halfOrder_, t, highest);
+        shared->apply(s.coefficients_, highest, derivatives + j * static_cast<std::size_t>(highest + 1));
+    }
 }
 
 double SmoothingSpline::getGeneralizedCrossValidation() const {
     if (residualDegreesOfFreedom_ <= 0) return std::numeric_limits<double>::quiet_NaN();
-    const double dofFraction = residualDegreesOfFreedom_ / static_cast<double>(x_.size());
+    const double dofFraction = residualDegreesOfFreedom_ / static_cast<double>(sites_->x.size());
     return meanSquaredResidual_ / (dofFraction * dofFraction);
 }
 
 double SmoothingSpline::getErrorVarianceEstimate() const {
     if (residualDegreesOfFreedom_ <= 0) return std::numeric_limits<double>::quiet_NaN();
-    return meanSquaredResidual_ * static_cast<double>(x_.size()) / residualDegreesOfFreedom_;
+    return meanSquaredResidual_ * static_cast<double>(sites_->x.size()) / residualDegreesOfFreedom_;
 }
 
 }  // namespace sinew

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
+#include <utility>
 
 #include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/data.hpp"
@@ -37,23 +38,30 @@ std::vector<std::string> getGeneralizedForceNames(const Model& model) {
     return names;
 }
 
-}  // namespace
-
-StorageTable runInverseDynamics(const Model& model, const StorageTable& coordinates, const ExternalLoads* loads,
-                                const InverseDynamicsOptions& options) {
-    // The coordinates' processing and the loads' splines (one per data column, over every row of the file)
-    // are independent.
+// `curves`, when given, were fitted to `loads` beforehand (the tool fits them beside the model's reading);
+// otherwise they are fitted here beside the coordinates' processing, which is independent of them.
+StorageTable calcGeneralizedForceTable(const Model& model, const StorageTable& coordinates, const ExternalLoads* loads,
+                                       std::optional<ExternalLoadCurves> curves, const InverseDynamicsOptions& options) {
     std::optional<CoordinateTrajectory> trajectory;
     std::optional<MeasuredLoads> measured;
-    runSideBySide(
-        [&] {
-            const CoordinateSamples samples = readCoordinateSamples(model, coordinates);
-            trajectory = preprocessCoordinateSamples(model, samples, options.lowpassCutoffHz, options.startTime,
-                                                     options.finalTime);
-        },
-        [&] {
-            if (loads) measured.emplace(model, *loads);
-        });
+    auto processCoordinates = [&] {
+        const CoordinateSamples samples = readCoordinateSamples(model, coordinates);
+        trajectory = preprocessCoordinateSamples(model, samples, options.lowpassCutoffHz, options.startTime,
+                                                 options.finalTime);
+    };
+    auto resolveLoads = [&] {
+        if (!loads) return;
+        if (curves)
+            measured.emplace(model, *loads, std::move(*curves));
+        else
+            measured.emplace(model, *loads);
+    };
+    if (curves) {
+        processCoordinates();
+        resolveLoads();
+    } else {
+        runSideBySide(processCoordinates, resolveLoads);
+    }
 
     StorageTable result;
     result.name = "Inverse Dynamics Generalized Forces";
@@ -82,18 +90,27 @@ StorageTable runInverseDynamics(const Model& model, const StorageTable& coordina
     return result;
 }
 
+}  // namespace
+
+StorageTable runInverseDynamics(const Model& model, const StorageTable& coordinates, const ExternalLoads* loads,
+                                const InverseDynamicsOptions& options) {
+    return calcGeneralizedForceTable(model, coordinates, loads, std::nullopt, options);
+}
+
 std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std::string& outputDirectory,
                                    const std::function<void(const std::string&)>& notes,
                                    const std::function<void(int frame, int frames)>& onFrame) {
-    // The model and the motion files are read at once. Only the model's reading sends notes, so they come
-    // out in order.
+    // The model is read beside the motion files and the loads' curves. Only the model's reading sends
+    // notes, so they come out in order.
     std::optional<Model> loadedModel;
     std::optional<ExternalLoads> loads;
+    std::optional<ExternalLoadCurves> curves;
     StorageTable coordinateFile;
     runSideBySide([&] { loadedModel = loadModel(setup.modelFile, notes); },
                   [&] {
                       if (!setup.externalLoadsFile.empty()) loads = readExternalLoads(setup.externalLoadsFile);
                       coordinateFile = readStorageFile(setup.coordinatesFile);
+                      if (loads) curves.emplace(*loads);
                   });
     const Model& model = *loadedModel;
     if (notes) {
@@ -121,7 +138,8 @@ std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std:
     options.finalTime = setup.endTime;
     options.onFrame = onFrame;
     const StorageTable coordinates = completeCoordinateTable(model, coordinateFile, notes);
-    const StorageTable result = runInverseDynamics(model, coordinates, loads ? &*loads : nullptr, options);
+    const StorageTable result =
+        calcGeneralizedForceTable(model, coordinates, loads ? &*loads : nullptr, std::move(curves), options);
     const std::filesystem::path directory = outputDirectory.empty() ? setup.resultsDirectory : outputDirectory;
     std::filesystem::create_directories(directory);
     const std::string path = (directory / setup.outputGenForceFile).string();

@@ -4,6 +4,7 @@
 // 1986) that OpenSim's GCVSpline / SimTK::SplineFitter fit, computed here with B-splines and banded
 // factorizations (docs/signal-processing.md, "Smoothing splines").
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 namespace sinew {
@@ -46,9 +47,18 @@ public:
     double calcValue(double t) const;
     // d^order s / dt^order at t for order >= 0 (zero above the degree); throws sinew::Error for order < 0.
     double calcDerivative(double t, int order) const;
+    // s and its derivatives of orders 1..highest at t into derivatives[0..highest], from one look-up of t's
+    // interval and one evaluation of its B-splines.
+    void calcDerivatives(double t, int highest, double* derivatives) const;
+    // The derivatives 0..highest at t of splines[0..count): derivatives[j * (highest + 1) + d] for splines[j]
+    // (a column-major (highest + 1) x count matrix). Splines that interpolateColumns fitted together share
+    // their sites, and then t's interval and B-splines are evaluated once for all of them: a table's columns
+    // cost little more than one.
+    static void calcDerivatives(const SmoothingSpline* splines, std::size_t count, double t, int highest,
+                                double* derivatives);
 
     int getDegree() const { return 2 * halfOrder_ - 1; }
-    const Eigen::VectorXd& getX() const { return x_; }
+    const Eigen::VectorXd& getX() const { return sites_->x; }
     double getSmoothingParameter() const { return smoothingParameter_; }
     // Fit statistics in Woltring's terms: the weighted mean squared residual RSS/n, the residual degrees of
     // freedom n - trace(A) (0 when interpolating, n - m for the polynomial limit), the GCV value and the
@@ -62,10 +72,14 @@ private:
     SmoothingSpline() = default;
     friend class NaturalSplineFitter;
 
-    int halfOrder_ = 0;             // m; the spline order is 2m
-    Eigen::VectorXd x_;             // data sites (n)
-    Eigen::VectorXd knots_;         // B-spline knots: x_0 and x_{n-1} repeated 2m times, interior sites once (n + 4m - 2)
-    Eigen::VectorXd coefficients_;  // B-spline coefficients (n + 2m - 2); they satisfy the natural end conditions
+    struct Sites {
+        Eigen::VectorXd x;      // data sites (n)
+        Eigen::VectorXd knots;  // B-spline knots: x_0 and x_{n-1} repeated 2m times, interior sites once (n + 4m - 2)
+    };
+
+    int halfOrder_ = 0;                   // m; the spline order is 2m
+    std::shared_ptr<const Sites> sites_;  // shared by the splines of one fit's columns
+    Eigen::VectorXd coefficients_;        // B-spline coefficients (n + 2m - 2); they satisfy the natural end conditions
     double smoothingParameter_ = 0;
     double meanSquaredResidual_ = 0;
     double residualDegreesOfFreedom_ = 0;

@@ -12,11 +12,32 @@
 
 namespace sinew {
 
+// The data columns that an ExternalLoads file's forces read, as functions of time: each interpolated as
+// OpenSim's ExternalForce interpolates it. They need no model, so a tool fits them while it reads the model:
+// on a long force-plate record they are most of what MeasuredLoads costs.
+class ExternalLoadCurves {
+public:
+    explicit ExternalLoadCurves(const ExternalLoads& loads);
+
+private:
+    friend class MeasuredLoads;
+    // A force's columns among splines_: `count` from `first`, its force, point and torque x, y, z triples
+    // at these offsets from `first` (-1 when absent).
+    struct ForceColumns {
+        std::size_t first = 0;
+        int count = 0, force = -1, point = -1, torque = -1;
+    };
+    std::vector<ForceColumns> forces_;      // one per ExternalForce that applies a force, in file order
+    std::vector<SmoothingSpline> splines_;  // one per column read, all on the data file's times
+};
+
 class MeasuredLoads {
 public:
     // Resolves every applied force's bodies to links of `model` (ground included); throws ModelError at the
     // ExternalForce's line for a body the model lacks.
     MeasuredLoads(const Model& model, const ExternalLoads& loads);
+    // The same with the curves fitted beforehand from the same `loads`.
+    MeasuredLoads(const Model& model, const ExternalLoads& loads, ExternalLoadCurves curves);
 
     // Adds each applied force, torque and its moment to linkForces (one per link, Data::F_G convention: moment
     // about the link origin, force; ground axes) at time t, with the pose in `data` (position kinematics
@@ -24,15 +45,12 @@ public:
     void addLinkForces(const Data& data, double t, std::vector<SpatialVector>& linkForces) const;
 
 private:
-    struct Channel {  // one x, y, z triple of data columns, or absent
-        std::vector<SmoothingSpline> splines;  // x, y, z; empty when absent
-        Eigen::Vector3d calcValue(double t) const;
-    };
     struct Load {
         int appliedTo = kGround, forceFrame = kGround, pointFrame = kGround;  // link indices
-        Channel force, point, torque;  // N, m, N m
+        ExternalLoadCurves::ForceColumns columns;  // N, m, N m
     };
     std::vector<Load> loads_;
+    ExternalLoadCurves curves_;
 };
 
 // The applied link forces of a frame at time t and coordinates q: none, or `loads`' when given (then with
