@@ -139,16 +139,33 @@ bool factorLDLT(SymmetricBand& a) {
 
 using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
+// Row i of a VectorXd or a RowMajorMatrix: its columns' entries, contiguous.
+template <typename Columns>
+double* rowOf(Columns& x, Eigen::Index i) {
+    return x.data() + i * x.cols();
+}
+template <typename Columns>
+const double* rowOf(const Columns& x, Eigen::Index i) {
+    return x.data() + i * x.cols();
+}
+
+// target[j] += scale * source[j] over a row of `columns` entries: a plain loop that the compiler vectorizes,
+// several times cheaper than an Eigen expression per row at the few dozen columns of a table.
+inline void addScaledRow(double* target, const double* source, double scale, Eigen::Index columns) {
+    for (Eigen::Index j = 0; j < columns; ++j) target[j] += scale * source[j];
+}
+
 // Solves in place for x, a VectorXd or a RowMajorMatrix of many columns. The matrix is solved row by row,
 // a row of all its columns one vector operation, each column's arithmetic that of a one-column solve.
 template <typename Columns>
 void solveLDLT(const SymmetricBand& f, Columns& x) {
     const int n = f.size(), b = f.b;
+    const Eigen::Index columns = x.cols();
     for (int i = 0; i < n; ++i)
-        for (int k = std::max(0, i - b); k < i; ++k) x.row(i) -= f.band(i - k, k) * x.row(k);
+        for (int k = std::max(0, i - b); k < i; ++k) addScaledRow(rowOf(x, i), rowOf(x, k), -f.band(i - k, k), columns);
     for (int i = 0; i < n; ++i) x.row(i) /= f.band(0, i);
     for (int i = n - 1; i >= 0; --i)
-        for (int k = i + 1; k <= std::min(n - 1, i + b); ++k) x.row(i) -= f.band(k - i, i) * x.row(k);
+        for (int k = i + 1; k <= std::min(n - 1, i + b); ++k) addScaledRow(rowOf(x, i), rowOf(x, k), -f.band(k - i, i), columns);
 }
 
 // The band of A^-1 from A = L D L^T, by the recurrence A^-1 = D^-1 L^-1 + (I - L^T) A^-1 run from the last
@@ -229,32 +246,29 @@ public:
         knots_.segment(order, n_ - 2) = x_.segment(1, n_ - 2);
         knots_.tail(order).setConstant(x_(n_ - 1));
 
-        const SparseMatrix Z = buildNaturalBasis(order, count);
-        Triplets collocation;
-        for (int i = 0; i < n_; ++i) {
-            const int span = findSpan(x_, order, x_(i));
-            const Window values = basisOnSpan(knots_, order, span, x_(i), 0)[0];
-            for (int r = 0; r < order; ++r)
-                if (values[r] != 0) collocation.emplace_back(i, span - order + 1 + r, values[r]);
+        buildNaturalEnds(order, count);
+        buildCollocation(order);
+        SparseMatrix P;
+        int b = static_cast<int>(rowValues_.cols()) - 1;  // H's half-bandwidth from N's rows
+        if (roughness) {
+            const SparseMatrix Z = naturalBasisMatrix(count);
+            P = Z.transpose() * buildRoughness(order, count) * Z;
+            for (int j = 0; j < P.outerSize(); ++j)
+                for (SparseMatrix::InnerIterator it(P, j); it; ++it) b = std::max(b, static_cast<int>(it.row()) - j);
         }
-        SparseMatrix B(n_, count);
-        B.setFromTriplets(collocation.begin(), collocation.end());
-        N_ = B * Z;
-        const SparseMatrix H = SparseMatrix(N_.transpose() * w_.asDiagonal() * N_);
-        const SparseMatrix P = roughness ? SparseMatrix(Z.transpose() * buildRoughness(order, count) * Z) : SparseMatrix(n_, n_);
-        int b = 0;
-        for (const SparseMatrix* a : {&H, &P})
-            for (int j = 0; j < a->outerSize(); ++j)
-                for (SparseMatrix::InnerIterator it(*a, j); it; ++it) b = std::max(b, static_cast<int>(it.row()) - j);
-        H_ = SymmetricBand::fromSparse(H, b);
-        P_ = SymmetricBand::fromSparse(P, b);
+        // H = N^T W N, row by row of N
+        H_ = {b, Eigen::MatrixXd::Zero(b + 1, n_)};
+        for (int i = 0; i < n_; ++i)
+            for (Eigen::Index c = 0; c < rowValues_.cols(); ++c)
+                for (Eigen::Index d = 0; d <= c; ++d)
+                    H_.band(c - d, rowFirst_[i] + d) += w_(i) * rowValues_(i, c) * rowValues_(i, d);
+        P_ = roughness ? SymmetricBand::fromSparse(P, b) : SymmetricBand{b, Eigen::MatrixXd::Zero(b + 1, n_)};
         roughness_ = roughness;
         // Interpolation only: every series shares H's factors.
         if (!roughness) {
             interpolationFactors_ = H_;
             interpolationSolvable_ = factorLDLT(interpolationFactors_);
         }
-        Z_ = Z;
         sites_ = std::make_shared<const SmoothingSpline::Sites>(SmoothingSpline::Sites{x_, knots_});
     }
 
@@ -263,7 +277,7 @@ public:
             throw Error("smoothing spline: " + std::to_string(y.size()) + " values for " + std::to_string(n_) + " sites");
         checkFinite(y);
         y_ = y;
-        rhs_ = N_.transpose() * w_.cwiseProduct(y_);
+        rhs_ = weightedCollocationTransposed(y_);
     }
 
     // The interpolant (p = 0) of every column of `values` (one row per site, as interpolateColumns checks),
@@ -272,10 +286,11 @@ public:
     std::vector<SmoothingSpline> interpolate(const Eigen::Ref<const Eigen::MatrixXd>& values) const {
         for (Eigen::Index j = 0; j < values.cols(); ++j) checkFinite(values.col(j));
         if (!interpolationSolvable_) makeSpline(Trial{});  // throws, naming the sites
-        RowMajorMatrix c = N_.transpose() * (w_.asDiagonal() * values);
+        const RowMajorMatrix rows = values;
+        RowMajorMatrix c = weightedCollocationTransposed(rows);
         solveLDLT(interpolationFactors_, c);
-        const Eigen::MatrixXd residual = values - N_ * c;
-        const Eigen::MatrixXd coefficients = Z_ * c;
+        const RowMajorMatrix residual = residualOf(rows, c);
+        const RowMajorMatrix coefficients = toBSplineCoefficients(c);
         std::vector<SmoothingSpline> splines;
         splines.reserve(static_cast<std::size_t>(values.cols()));
         for (Eigen::Index j = 0; j < values.cols(); ++j) {
@@ -308,7 +323,7 @@ public:
         trial.solved = true;
         trial.c = rhs_;
         solveLDLT(g, trial.c);
-        const Eigen::VectorXd residual = y_ - N_ * trial.c;
+        const Eigen::VectorXd residual = residualOf(y_, trial.c);
         trial.meanSquaredResidual = residual.cwiseAbs2().dot(w_) / n_;
         trial.residualDegreesOfFreedom = p > 0 ? p * bandOfInverse(g).dot(P_) : 0.0;
         return trial;
@@ -326,7 +341,7 @@ public:
         SmoothingSpline s;
         s.halfOrder_ = m_;
         s.sites_ = sites_;
-        s.coefficients_ = Z_ * trial.c;
+        s.coefficients_ = toBSplineCoefficients(trial.c);
         s.smoothingParameter_ = trial.p;
         s.meanSquaredResidual_ = trial.meanSquaredResidual;
         s.residualDegreesOfFreedom_ = trial.residualDegreesOfFreedom;
@@ -346,16 +361,14 @@ private:
     // basis of that null space (m vectors, from the SVD of the row-normalized conditions) gives m
     // well-scaled natural basis functions. (Solving for some coefficients in terms of others instead gives
     // combinations with coefficients ~ 1/h^(m-1) and a badly conditioned system.) The other B-splines are
-    // natural already.
-    SparseMatrix buildNaturalBasis(int order, int count) const {
-        Triplets z;
-        for (int g = 2 * m_ - 1; g <= count - 2 * m_; ++g) z.emplace_back(g, g - m_ + 1, 1.0);
+    // natural already: B-spline g in [2m - 1, count - 2m] is natural basis function g - m + 1. Z is kept as
+    // the two ends' null spaces: B-spline s from an end (s < 2m - 1) is sum_f end(s, f) N_f, f counted from
+    // that end too.
+    void buildNaturalEnds(int order, int count) {
         for (const bool left : {true, false}) {
             const int span = left ? order - 1 : count - 1;
             const double end = left ? x_(0) : x_(n_ - 1);
-            // B-spline s counted from this end: its global index, and the natural basis column of free vector s
-            auto global = [&](int s) { return left ? s : count - 1 - s; };
-            auto column = [&](int s) { return left ? s : n_ - 1 - s; };
+            auto global = [&](int s) { return left ? s : count - 1 - s; };  // B-spline s from this end
             Eigen::MatrixXd conditions = Eigen::MatrixXd::Zero(std::max(m_ - 1, 1), 2 * m_ - 1);
             const BasisTable derivatives = basisOnSpan(knots_, order, span, end, 2 * m_ - 2);
             for (int q = 0; q < m_ - 1; ++q) {
@@ -364,13 +377,87 @@ private:
                 conditions.row(q).normalize();
             }
             const Eigen::JacobiSVD<Eigen::MatrixXd> svd(conditions, Eigen::ComputeFullV);
-            const Eigen::MatrixXd nullSpace = svd.matrixV().rightCols(m_);
-            for (int f = 0; f < m_; ++f)
-                for (int s = 0; s < 2 * m_ - 1; ++s) z.emplace_back(global(s), column(f), nullSpace(s, f));
+            (left ? leftEnd_ : rightEnd_) = svd.matrixV().rightCols(m_);
         }
+    }
+
+    // B-spline g as natural basis functions: (column, weight) pairs.
+    template <typename Visit>
+    void forEachNaturalColumn(int g, int count, Visit visit) const {
+        if (g < 2 * m_ - 1) {
+            for (int f = 0; f < m_; ++f) visit(f, leftEnd_(g, f));
+        } else if (g > count - 2 * m_) {
+            for (int f = 0; f < m_; ++f) visit(n_ - 1 - f, rightEnd_(count - 1 - g, f));
+        } else {
+            visit(g - m_ + 1, 1.0);
+        }
+    }
+
+    SparseMatrix naturalBasisMatrix(int count) const {
+        Triplets z;
+        for (int g = 0; g < count; ++g) forEachNaturalColumn(g, count, [&](int c, double v) { z.emplace_back(g, c, v); });
         SparseMatrix Z(count, n_);
         Z.setFromTriplets(z.begin(), z.end());
         return Z;
+    }
+
+    // N(i, c) = N_c(x_i), row by row: each row's non-zeros lie in rowValues_.cols() columns from rowFirst_[i].
+    void buildCollocation(int order) {
+        const int count = n_ + 2 * m_ - 2;
+        std::vector<int> spans(static_cast<std::size_t>(n_)), last(static_cast<std::size_t>(n_));
+        rowFirst_.assign(static_cast<std::size_t>(n_), n_);
+        int width = 1;
+        for (int i = 0; i < n_; ++i) {
+            const std::size_t row = static_cast<std::size_t>(i);
+            spans[row] = findSpan(x_, order, x_(i));
+            for (int g = spans[row] - order + 1; g <= spans[row]; ++g)
+                forEachNaturalColumn(g, count, [&](int c, double) {
+                    rowFirst_[row] = std::min(rowFirst_[row], c);
+                    last[row] = std::max(last[row], c);
+                });
+            width = std::max(width, last[row] - rowFirst_[row] + 1);
+        }
+        rowValues_ = Eigen::MatrixXd::Zero(n_, width);
+        for (int i = 0; i < n_; ++i) {
+            const std::size_t row = static_cast<std::size_t>(i);
+            rowFirst_[row] = std::min(rowFirst_[row], n_ - width);
+            const Window values = basisOnSpan(knots_, order, spans[row], x_(i), 0)[0];
+            for (int r = 0; r < order; ++r)
+                forEachNaturalColumn(spans[row] - order + 1 + r, count,
+                                     [&](int c, double v) { rowValues_(i, c - rowFirst_[row]) += values[static_cast<std::size_t>(r)] * v; });
+        }
+    }
+
+    // N^T W v for a column or a table of columns (row-major: each step one row of every column).
+    template <typename Values>
+    RowMajorMatrix weightedCollocationTransposed(const Values& v) const {
+        RowMajorMatrix result = RowMajorMatrix::Zero(n_, v.cols());
+        for (int i = 0; i < n_; ++i)
+            for (Eigen::Index c = 0; c < rowValues_.cols(); ++c)
+                addScaledRow(rowOf(result, rowFirst_[static_cast<std::size_t>(i)] + c), rowOf(v, i),
+                             w_(i) * rowValues_(i, c), v.cols());
+        return result;
+    }
+
+    // v - N c
+    template <typename Values, typename Coefficients>
+    RowMajorMatrix residualOf(const Values& v, const Coefficients& c) const {
+        RowMajorMatrix residual = v;
+        for (int i = 0; i < n_; ++i)
+            for (Eigen::Index k = 0; k < rowValues_.cols(); ++k)
+                addScaledRow(rowOf(residual, i), rowOf(c, rowFirst_[static_cast<std::size_t>(i)] + k), -rowValues_(i, k),
+                             residual.cols());
+        return residual;
+    }
+
+    // Z c: the B-spline coefficients of natural-basis coefficients c.
+    template <typename Coefficients>
+    RowMajorMatrix toBSplineCoefficients(const Coefficients& c) const {
+        const int count = n_ + 2 * m_ - 2;
+        RowMajorMatrix a = RowMajorMatrix::Zero(count, c.cols());
+        for (int g = 0; g < count; ++g)
+            forEachNaturalColumn(g, count, [&](int column, double v) { addScaledRow(rowOf(a, g), rowOf(c, column), v, a.cols()); });
+        return a;
     }
 
     // Omega(g, h) = integral over [x_0, x_{n-1}] of B_g^(m) B_h^(m), interval by interval.
@@ -396,7 +483,9 @@ private:
     bool interpolationSolvable_ = false;
     SymmetricBand interpolationFactors_;  // H = L D L^T, without roughness
     Eigen::VectorXd x_, y_, w_, knots_, rhs_;
-    SparseMatrix Z_, N_;
+    Eigen::MatrixXd leftEnd_, rightEnd_;  // Z at the ends ((2m - 1) x m each), buildNaturalEnds
+    std::vector<int> rowFirst_;           // N's rows, buildCollocation
+    Eigen::MatrixXd rowValues_;
     SymmetricBand H_, P_;
     std::shared_ptr<const SmoothingSpline::Sites> sites_;  // what the fitted splines share
 };

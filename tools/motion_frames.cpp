@@ -1,18 +1,20 @@
 #include "sinew/tools/motion_frames.hpp"
 
+#include <algorithm>
+
 #include "sinew/core/data.hpp"
 
 namespace sinew {
 
 void forEachMotionFrame(const Model& model, const CoordinateTrajectory& trajectory, const MeasuredLoads* loads,
                         const std::function<void(const MotionFrame&)>& visit,
-                        const std::function<void(int frame, int frames)>& onFrame) {
+                        const std::function<void(int frame, int frames)>& onFrame, int firstFrame, int endFrame) {
     Data data(model);
     std::vector<SpatialVector> linkForces(static_cast<std::size_t>(model.getNumLinks()));
     Eigen::VectorXd q(trajectory.q.cols()), u(trajectory.qdot.cols()), udot(trajectory.qddot.cols());
     const bool hasSpeeds = trajectory.qdot.rows() > 0, hasAccelerations = trajectory.qddot.rows() > 0;
     const int frames = static_cast<int>(trajectory.times.size());
-    for (int i = 0; i < frames; ++i) {
+    for (int i = firstFrame; i < (endFrame < 0 ? frames : std::min(endFrame, frames)); ++i) {
         const double t = trajectory.times[i];
         q = trajectory.q.row(i).transpose();
         if (hasSpeeds) u = trajectory.qdot.row(i).transpose();

@@ -25,9 +25,11 @@ struct MotionFrame {
 
 // For each row of `trajectory` in order: visit(frame), then onFrame(index + 1, frames) when given. The
 // trajectory's qdot and qddot may have no rows (a motion of coordinates alone: u and udot are then empty).
-// The visitor's sinew::Error propagates.
+// The visitor's sinew::Error propagates. Rows [firstFrame, endFrame) only when given (endFrame < 0: to the
+// last), so that independent frames can be shared among threads, each with its own call.
 void forEachMotionFrame(const Model& model, const CoordinateTrajectory& trajectory, const MeasuredLoads* loads,
                         const std::function<void(const MotionFrame&)>& visit,
-                        const std::function<void(int frame, int frames)>& onFrame = {});
+                        const std::function<void(int frame, int frames)>& onFrame = {}, int firstFrame = 0,
+                        int endFrame = -1);
 
 }  // namespace sinew
