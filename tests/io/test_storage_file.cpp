@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -69,6 +71,42 @@ TEST(StorageFile, RoundTripIsBitIdentical) {
 }
 
 const std::string kHeader = "motion\nversion=1\nnRows=2\nnColumns=3\ninDegrees=no\nendheader\n";  // lines 1-6
+
+// Numbers as people and programs print them: short decimals (read by a fast path), long ones, exponents
+// near and past 1e+-22, leading zeros, signed zeros, '+' signs and hexadecimal (left to from_chars and
+// strtod). Each must read as the double strtod gives for the same text, bit for bit.
+TEST(StorageFile, NumbersReadAsStrtodReadsThem) {
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int> digitCount(1, 22), digit(0, 9), exponent(-40, 40), form(0, 5);
+    auto digits = [&](int count) {
+        std::string text;
+        for (int i = 0; i < count; ++i) text += static_cast<char>('0' + digit(rng));
+        return text;
+    };
+    std::vector<std::string> numbers = {"0", "-0", "0.0", "-0.000", "1", "9007199254740992", "9007199254740993",
+                                        "18446744073709551615", "0.1", "1e22", "1e23", "1e-22", "1e-23", "-7.5E+3",
+                                        "+2.5", "0x1p-3", "4.9406564584124654e-324", "1.7976931348623157e308",
+                                        "000123.4500", ".5", "5.", "-.25e1", "123456789012345678901234567890"};
+    for (int i = 0; i < 3000; ++i) {
+        std::string text = (rng() % 2 ? "-" : "") + digits(digitCount(rng));
+        switch (form(rng)) {
+            case 0: break;
+            case 1: text += "." + digits(digitCount(rng)); break;
+            case 2: text += "e" + std::to_string(exponent(rng)); break;
+            case 3: text += "." + digits(digitCount(rng)) + "E" + std::to_string(exponent(rng)); break;
+            default: text = "0." + std::string(static_cast<std::size_t>(digitCount(rng) % 6), '0') + digits(digitCount(rng)); break;
+        }
+        numbers.push_back(text);
+    }
+    std::string file = "numbers\nversion=1\nnRows=" + std::to_string(numbers.size()) + "\nnColumns=2\nendheader\ntime\tvalue\n";
+    for (std::size_t i = 0; i < numbers.size(); ++i) file += std::to_string(i) + "\t" + numbers[i] + "\n";
+    const StorageTable table = readStorageFile(writeText(file));
+    ASSERT_EQ(table.rows.size(), numbers.size());
+    for (std::size_t i = 0; i < numbers.size(); ++i) {
+        const double expected = std::strtod(numbers[i].c_str(), nullptr), read = table.rows[i][0];
+        EXPECT_EQ(std::memcmp(&expected, &read, sizeof(double)), 0) << numbers[i] << " read as " << read;
+    }
+}
 
 TEST(StorageFile, MissingEndheader) {
     // The file ends while still in the header, so there is no line to blame.
