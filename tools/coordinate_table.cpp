@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include "sinew/core/coordinate_rates.hpp"
 #include "sinew/core/error.hpp"
+#include "side_by_side.hpp"
 
 namespace sinew {
 namespace {
@@ -63,6 +66,36 @@ void convertQuaternionRates(const Model& model, CoordinateTrajectory& trajectory
 bool isInDegrees(const Model& model, const StorageTable& table, int q) {
     return table.inDegrees && model.getCoordinates()[static_cast<std::size_t>(q)].motionType == MotionType::Rotational &&
            !isQuaternionComponent(model, q);
+}
+
+// The columns are independent (each padded, filtered and splined alone, as OpenSim does), so the table's
+// two halves are processed side by side, each column's arithmetic unchanged. Where both halves hold a bad
+// value, the first half's is reported.
+CoordinateTrajectory preprocessInHalves(const Eigen::VectorXd& times, const Eigen::MatrixXd& q,
+                                        const CoordinatePreprocessingOptions& options) {
+    const Eigen::Index columns = q.cols(), half = columns / 2;
+    if (half == 0) return preprocessCoordinates(times, q, options);
+    auto optionsFor = [&](Eigen::Index first, Eigen::Index count) {
+        CoordinatePreprocessingOptions part = options;
+        part.columnNames.assign(options.columnNames.begin() + first, options.columnNames.begin() + first + count);
+        if (options.columnScales.size() != 0) part.columnScales = options.columnScales.segment(first, count);
+        return part;
+    };
+    std::optional<CoordinateTrajectory> left, right;
+    runSideBySide([&] { left = preprocessCoordinates(times, q.leftCols(half), optionsFor(0, half)); },
+                  [&] { right = preprocessCoordinates(times, q.rightCols(columns - half), optionsFor(half, columns - half)); });
+    CoordinateTrajectory whole = std::move(*left);
+    auto append = [](Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+        Eigen::MatrixXd joined(a.rows(), a.cols() + b.cols());
+        joined << a, b;
+        a = std::move(joined);
+    };
+    append(whole.q, right->q);
+    append(whole.qdot, right->qdot);
+    append(whole.qddot, right->qddot);
+    append(whole.processedValues, right->processedValues);
+    whole.splines.insert(whole.splines.end(), right->splines.begin(), right->splines.end());
+    return whole;
 }
 
 }  // namespace
@@ -132,7 +165,7 @@ CoordinateTrajectory preprocessCoordinateSamples(const Model& model, const Coord
                     std::to_string(samples.times[0]) + ", " + std::to_string(samples.times[rows - 1]) + "] s");
     for (const Coordinate& c : model.getCoordinates()) options.columnNames.push_back(c.name);
     try {
-        CoordinateTrajectory trajectory = preprocessCoordinates(samples.times, samples.q, options);
+        CoordinateTrajectory trajectory = preprocessInHalves(samples.times, samples.q, options);
         if (hasQuaternionJoints(model)) convertQuaternionRates(model, trajectory);
         return trajectory;
     } catch (const Error& e) {
