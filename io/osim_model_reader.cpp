@@ -4,6 +4,8 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <string>
+#include <string_view>
 
 #include "osim_xml.hpp"
 #include "sinew/core/error.hpp"
@@ -82,19 +84,25 @@ const std::map<std::string, PathForceTypeInfo>& pathForceTypes() {
 // A socket path joined to the path of the component that owns the socket, as OpenSim resolves it:
 // absolute paths stand, relative ones start at the owner, ".." climbs one component.
 std::string makeAbsolutePath(const std::string& owner, const std::string& path) {
-    std::vector<std::string> parts;
-    std::istringstream segments(path.front() == '/' ? path : owner + "/" + path);
-    std::string segment;
-    while (std::getline(segments, segment, '/')) {
-        if (segment.empty() || segment == ".") continue;
-        if (segment == "..") {
-            if (!parts.empty()) parts.pop_back();
-        } else {
-            parts.push_back(segment);
-        }
-    }
+    // Built in place: each segment appended as "/segment", ".." cutting the last one off again.
     std::string absolute;
-    for (const std::string& part : parts) absolute += "/" + part;
+    absolute.reserve(owner.size() + path.size() + 2);
+    auto append = [&](std::string_view segments) {
+        for (std::size_t start = 0; start <= segments.size();) {
+            std::size_t end = segments.find('/', start);
+            if (end == std::string_view::npos) end = segments.size();
+            const std::string_view segment = segments.substr(start, end - start);
+            if (segment == "..") {
+                absolute.resize(absolute.empty() ? 0 : absolute.rfind('/'));
+            } else if (!segment.empty() && segment != ".") {
+                absolute += '/';
+                absolute += segment;
+            }
+            start = end + 1;
+        }
+    };
+    if (path.front() != '/') append(owner);
+    append(path);
     return absolute.empty() ? "/" : absolute;
 }
 

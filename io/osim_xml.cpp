@@ -130,25 +130,31 @@ constexpr double kMaxOsimMagnitude = 1e9;
 
 std::vector<double> readNumbers(const XmlDocument& doc, const Element& element) {
     // SimTK writes vectors as "~[1,2,3]" and some files wrap them in parentheses; both read as plain lists.
-    const std::string text = textOf(element);
-    auto separates = [](char c) { return std::isspace(static_cast<unsigned char>(c)) || (c != '\0' && std::strchr(",()[]~", c)); };
-    const std::string name = typeOf(element);
+    const std::string_view text = nodeOf(element).child_value();
+    auto separates = [](char c) {
+        switch (c) {
+            case ' ': case '\t': case '\n': case '\r': case '\f': case '\v':
+            case ',': case '(': case ')': case '[': case ']': case '~': return true;
+            default: return false;
+        }
+    };
     std::vector<double> numbers;
     for (std::size_t i = 0; i < text.size();) {
         while (i < text.size() && separates(text[i])) ++i;
         const std::size_t start = i;
         while (i < text.size() && !separates(text[i])) ++i;
         if (i == start) break;
-        const std::string_view token(text.data() + start, i - start);
+        const std::string_view token = text.substr(start, i - start);
         const std::optional<double> parsed = parseNumber(token);
         if (!parsed) doc.fail(element, "'" + std::string(token) + "' is not a number");
         const double value = *parsed;
         if (std::isnan(value)) doc.fail(element, "NaN is not a value");
         // OpenSim writes an actuator's absent control limit as Inf; nowhere else does sinew carry one.
+        const std::string_view name = typeOf(element);
         if (std::isinf(value) && name != "min_control" && name != "max_control")
-            doc.fail(element, "<" + name + "> '" + std::string(token) + "' is not a finite number");
+            doc.fail(element, "<" + std::string(name) + "> '" + std::string(token) + "' is not a finite number");
         if (std::isfinite(value) && std::abs(value) > kMaxOsimMagnitude)
-            doc.fail(element, "<" + name + "> " + std::string(token) + " is beyond the magnitude 1e9 sinew bounds a model's "
+            doc.fail(element, "<" + std::string(name) + "> " + std::string(token) + " is beyond the magnitude 1e9 sinew bounds a model's "
                               "numbers to (docs/model-format.md, \"Bounds\")");
         numbers.push_back(value);
     }
