@@ -21,64 +21,50 @@ using Window = std::array<double, kMaxOrder>;
 using SparseMatrix = Eigen::SparseMatrix<double>;
 using Triplets = std::vector<Eigen::Triplet<double>>;
 
-// The values and derivatives up to `highest` (< order) at t of the `order` B-splines that do not vanish on
-// the knot span [knots[span], knots[span+1]] (t in it, or at its right end): table[d][r] is the d-th
-// derivative of B_{span-order+1+r}. One triangle of the Cox-de Boor recurrence gives every value at once,
-// and the derivatives come from its lower orders' entries (Piegl and Tiller, The NURBS Book, 2nd ed.,
-// algorithm A2.3): O(order^2) per derivative, where a unit-vector de Boor pass per basis function costs
-// O(order^3). Knot differences on the span are positive, so no division by zero.
-using BasisTable = std::array<Window, kMaxOrder>;
+// The derivatives lowest..highest at t of sum_j a_j B_j, the B-splines of `order` on `knots`, into
+// derivatives[lowest..highest], where t lies in the knot span [knots[span], knots[span+1]) (or at its right end)
+// and window[r] = a_{span-order+1+r}. For each derivative the coefficients are differenced once more (each
+// difference lowers the order by one), then de Boor's recurrence evaluates the lower-order spline (de Boor,
+// A Practical Guide to Splines, ch. X): differencing the coefficients first keeps the high derivatives
+// that the natural conditions and the roughness integrals need accurate, where differencing the basis
+// functions' values (The NURBS Book's A2.3) lost digits enough to move a degree-7 fit by 2e-7.
+void evalOnSpan(const Eigen::VectorXd& knots, int order, int span, Window a, double t, int lowest, int highest,
+                double* derivatives) {
+    const int first = span - order + 1;  // global index of window[0]
+    for (int derivative = 0; derivative <= highest; ++derivative) {
+        if (derivative >= order) {
+            derivatives[derivative] = 0;
+            continue;
+        }
+        if (derivative > 0)
+            for (int r = order - 1; r >= derivative; --r) {
+                const int j = first + r;
+                a[r] = (order - derivative) * (a[r] - a[r - 1]) / (knots(j + order - derivative) - knots(j));
+            }
+        if (derivative < lowest) continue;
+        Window b = a;
+        const int reduced = order - derivative;
+        for (int level = 1; level < reduced; ++level)
+            for (int r = order - 1; r >= derivative + level; --r) {
+                const int j = first + r;
+                const double alpha = (t - knots(j)) / (knots(j + reduced - level) - knots(j));
+                b[r] = (1 - alpha) * b[r - 1] + alpha * b[r];
+            }
+        derivatives[derivative] = b[order - 1];
+    }
+}
 
-BasisTable basisOnSpan(const Eigen::VectorXd& knots, int order, int span, double t, int highest) {
-    const int p = order - 1;
-    // ndu[j][r], r <= j: the knot differences of order j; r > j: the values of the order-(r+1) B-splines
-    std::array<Window, kMaxOrder> ndu;
-    Window left{}, right{};
-    ndu[0][0] = 1;
-    for (int j = 1; j <= p; ++j) {
-        left[j] = t - knots(span + 1 - j);
-        right[j] = knots(span + j) - t;
-        double saved = 0;
-        for (int r = 0; r < j; ++r) {
-            ndu[j][r] = right[r + 1] + left[j - r];
-            const double temp = ndu[r][j - 1] / ndu[j][r];
-            ndu[r][j] = saved + right[r + 1] * temp;
-            saved = left[j - r] * temp;
-        }
-        ndu[j][j] = saved;
+// The order-many B-splines that do not vanish on `span`, each differentiated `derivative` times, at t.
+Window basisOnSpan(const Eigen::VectorXd& knots, int order, int span, double t, int derivative) {
+    Window values{};
+    std::array<double, kMaxOrder + 1> derivatives;
+    for (int r = 0; r < order; ++r) {
+        Window unit{};
+        unit[r] = 1;
+        evalOnSpan(knots, order, span, unit, t, derivative, derivative, derivatives.data());
+        values[r] = derivatives[static_cast<std::size_t>(derivative)];
     }
-    BasisTable table{};
-    for (int r = 0; r <= p; ++r) table[0][r] = ndu[r][p];
-    std::array<Window, 2> a;
-    for (int r = 0; r <= p; ++r) {
-        int s1 = 0, s2 = 1;
-        a[0][0] = 1;
-        for (int k = 1; k <= highest; ++k) {
-            double d = 0;
-            const int rk = r - k, pk = p - k;
-            if (r >= k) {
-                a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
-                d = a[s2][0] * ndu[rk][pk];
-            }
-            const int j1 = rk >= -1 ? 1 : -rk, j2 = r - 1 <= pk ? k - 1 : p - r;
-            for (int j = j1; j <= j2; ++j) {
-                a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rk + j];
-                d += a[s2][j] * ndu[rk + j][pk];
-            }
-            if (r <= pk) {
-                a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
-                d += a[s2][k] * ndu[r][pk];
-            }
-            table[k][r] = d;
-            std::swap(s1, s2);
-        }
-    }
-    double factor = p;
-    for (int k = 1; k <= highest; ++k) {
-        for (int r = 0; r <= p; ++r) table[k][r] *= factor;
-        factor *= p - k;
-    }
-    return table;
+    return values;
 }
 
 // The knot span holding t for sites x: interval i = [x_i, x_{i+1}) is span order - 1 + i; the last
@@ -370,9 +356,8 @@ private:
             const double end = left ? x_(0) : x_(n_ - 1);
             auto global = [&](int s) { return left ? s : count - 1 - s; };  // B-spline s from this end
             Eigen::MatrixXd conditions = Eigen::MatrixXd::Zero(std::max(m_ - 1, 1), 2 * m_ - 1);
-            const BasisTable derivatives = basisOnSpan(knots_, order, span, end, 2 * m_ - 2);
             for (int q = 0; q < m_ - 1; ++q) {
-                const Window& d = derivatives[static_cast<std::size_t>(m_ + q)];
+                const Window d = basisOnSpan(knots_, order, span, end, m_ + q);
                 for (int s = 0; s < 2 * m_ - 1; ++s) conditions(q, s) = d[global(s) - (span - order + 1)];
                 conditions.row(q).normalize();
             }
@@ -421,7 +406,7 @@ private:
         for (int i = 0; i < n_; ++i) {
             const std::size_t row = static_cast<std::size_t>(i);
             rowFirst_[row] = std::min(rowFirst_[row], n_ - width);
-            const Window values = basisOnSpan(knots_, order, spans[row], x_(i), 0)[0];
+            const Window values = basisOnSpan(knots_, order, spans[row], x_(i), 0);
             for (int r = 0; r < order; ++r)
                 forEachNaturalColumn(spans[row] - order + 1 + r, count,
                                      [&](int c, double v) { rowValues_(i, c - rowFirst_[row]) += values[static_cast<std::size_t>(r)] * v; });
@@ -468,7 +453,7 @@ private:
             const int span = order - 1 + i, first = span - order + 1;
             const double half = (x_(i + 1) - x_(i)) / 2;
             for (const auto& [node, weight] : rule) {
-                const Window d = basisOnSpan(knots_, order, span, x_(i) + half * (1 + node), m_)[static_cast<std::size_t>(m_)];
+                const Window d = basisOnSpan(knots_, order, span, x_(i) + half * (1 + node), m_);
                 for (int r = 0; r < order; ++r)
                     for (int s = 0; s < order; ++s) omega.emplace_back(first + r, first + s, weight * half * d[r] * d[s]);
             }
@@ -584,45 +569,37 @@ std::vector<SmoothingSpline> SmoothingSpline::interpolateColumns(int degree, con
 
 namespace {
 
-// Where t lies among a spline's sites and its B-splines' derivatives there: what every spline on the same
-// sites shares. Outside the sites the natural continuation is the Taylor polynomial of degree m - 1 at the
-// end, so only derivatives below m are taken there.
-struct SpanEvaluation {
-    int order = 0, span = 0, computed = 0;  // computed: the highest derivative evaluated
+// Where t lies among a spline's sites: what every spline on the same sites shares. Outside the sites the
+// natural continuation is the Taylor polynomial of degree m - 1 at the end, so only derivatives below m
+// are taken there.
+struct SpanLocation {
+    int order = 0, span = 0, evaluated = 0;  // evaluated: the highest derivative taken on the span
     bool outside = false;
     double end = 0, t = 0;
-    BasisTable basis;
 
-    SpanEvaluation(const Eigen::VectorXd& x, const Eigen::VectorXd& knots, int m, double time, int highest)
-        : order(2 * m), t(time) {
+    SpanLocation(const Eigen::VectorXd& x, int m, double time, int highest) : order(2 * m), t(time) {
         if (highest < 0) throw Error("smoothing spline: derivative order " + std::to_string(highest) + "; expected >= 0");
         if (!std::isfinite(t)) throw Error("smoothing spline: evaluated at a non-finite time");
         const Eigen::Index n = x.size();
         outside = t < x(0) || t > x(n - 1);
         end = t < x(0) ? x(0) : x(n - 1);
-        const double at = outside ? end : t;
-        span = findSpan(x, order, at);
-        computed = outside ? m - 1 : std::min(order - 1, highest);
-        basis = basisOnSpan(knots, order, span, at, computed);
+        span = findSpan(x, order, outside ? end : t);
+        evaluated = outside ? m - 1 : std::min(order - 1, highest);
     }
 
-    // derivatives[0..highest] of the spline with these B-spline coefficients.
-    void apply(const Eigen::VectorXd& coefficients, int highest, double* derivatives) const {
-        const double* window = coefficients.data() + (span - order + 1);
+    // derivatives[0..highest] of the spline with these knots and B-spline coefficients.
+    void evaluate(const Eigen::VectorXd& knots, const Eigen::VectorXd& coefficients, int highest, double* derivatives) const {
+        Window window{};
+        for (int r = 0; r < order; ++r) window[static_cast<std::size_t>(r)] = coefficients(span - order + 1 + r);
         std::array<double, kMaxOrder> atSpan{};
-        for (int d = 0; d <= computed; ++d) {
-            const Window& b = basis[static_cast<std::size_t>(d)];
-            double sum = 0;
-            for (int r = 0; r < order; ++r) sum += b[static_cast<std::size_t>(r)] * window[r];
-            atSpan[static_cast<std::size_t>(d)] = sum;
-        }
+        evalOnSpan(knots, order, span, window, outside ? end : t, 0, evaluated, atSpan.data());
         for (int d = 0; d <= highest; ++d) {
             double value = 0;
             if (!outside) {
-                value = d <= computed ? atSpan[static_cast<std::size_t>(d)] : 0.0;
+                value = d <= evaluated ? atSpan[static_cast<std::size_t>(d)] : 0.0;
             } else {
                 double term = 1;
-                for (int j = d; j <= computed; ++j) {
+                for (int j = d; j <= evaluated; ++j) {
                     value += atSpan[static_cast<std::size_t>(j)] * term;
                     term *= (t - end) / (j - d + 1);
                 }
@@ -652,17 +629,17 @@ double SmoothingSpline::calcDerivative(double t, int order) const {
 }
 
 void SmoothingSpline::calcDerivatives(double t, int highest, double* derivatives) const {
-    SpanEvaluation(sites_->x, sites_->knots, halfOrder_, t, highest).apply(coefficients_, highest, derivatives);
+    SpanLocation(sites_->x, halfOrder_, t, highest).evaluate(sites_->knots, coefficients_, highest, derivatives);
 }
 
 void SmoothingSpline::calcDerivatives(const SmoothingSpline* splines, std::size_t count, double t, int highest,
                                       double* derivatives) {
-    std::optional<SpanEvaluation> shared;
+    std::optional<SpanLocation> shared;
     for (std::size_t j = 0; j < count; ++j) {
         const SmoothingSpline& s = splines[j];
         const bool sameSites = j > 0 && s.sites_ == splines[j - 1].sites_ && s.halfOrder_ == splines[j - 1].halfOrder_;
-        if (!sameSites) shared.emplace(s.sites_->x, s.sites_->knots, s.halfOrder_, t, highest);
-        shared->apply(s.coefficients_, highest, derivatives + j * static_cast<std::size_t>(highest + 1));
+        if (!sameSites) shared.emplace(s.sites_->x, s.halfOrder_, t, highest);
+        shared->evaluate(s.sites_->knots, s.coefficients_, highest, derivatives + j * static_cast<std::size_t>(highest + 1));
     }
 }
 
