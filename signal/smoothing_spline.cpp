@@ -21,47 +21,69 @@ using Window = std::array<double, kMaxOrder>;
 using SparseMatrix = Eigen::SparseMatrix<double>;
 using Triplets = std::vector<Eigen::Triplet<double>>;
 
-// The derivatives lowest..highest at t of sum_j a_j B_j, the B-splines of `order` on `knots`, into
-// derivatives[lowest..highest], where t lies in the knot span [knots[span], knots[span+1]) (or at its right end)
-// and window[r] = a_{span-order+1+r}. For each derivative the coefficients are differenced once more (each
+// The derivatives lowest..highest at t of sum_j a_j B_j, the B-splines of `order` on `knots`, for any
+// coefficient window a (window[r] = a_{span-order+1+r}), where t lies in the knot span [knots[span],
+// knots[span+1]) (or at its right end). For each derivative the coefficients are differenced once more (each
 // difference lowers the order by one), then de Boor's recurrence evaluates the lower-order spline (de Boor,
-// A Practical Guide to Splines, ch. X): differencing the coefficients first keeps the high derivatives
-// that the natural conditions and the roughness integrals need accurate, where differencing the basis
-// functions' values (The NURBS Book's A2.3) lost digits enough to move a degree-7 fit by 2e-7.
-void evalOnSpan(const Eigen::VectorXd& knots, int order, int span, Window a, double t, int lowest, int highest,
-                double* derivatives) {
-    const int first = span - order + 1;  // global index of window[0]
-    for (int derivative = 0; derivative <= highest; ++derivative) {
-        if (derivative >= order) {
-            derivatives[derivative] = 0;
-            continue;
-        }
-        if (derivative > 0)
+// A Practical Guide to Splines, ch. X). Differencing the coefficients first keeps the high derivatives that
+// the natural conditions and the roughness integrals need accurate: differencing the basis functions'
+// values instead (The NURBS Book's A2.3) lost digits enough to move a degree-7 fit by 2e-7. The
+// recurrence's factors depend on the knots and t alone, so they are computed once and applied to every
+// window that shares them: a table's splines on the same sites, or the unit windows that give the
+// B-splines themselves.
+class SpanRecurrence {
+public:
+    SpanRecurrence(const Eigen::VectorXd& knots, int order, int span, double t, int lowest, int highest)
+        : order_(order), lowest_(lowest), highest_(highest) {
+        const int first = span - order + 1;  // global index of window[0]
+        for (int derivative = 1; derivative <= highest; ++derivative)
             for (int r = order - 1; r >= derivative; --r) {
                 const int j = first + r;
-                a[r] = (order - derivative) * (a[r] - a[r - 1]) / (knots(j + order - derivative) - knots(j));
+                knotSpans_[derivative][r] = knots(j + order - derivative) - knots(j);
             }
-        if (derivative < lowest) continue;
-        Window b = a;
-        const int reduced = order - derivative;
-        for (int level = 1; level < reduced; ++level)
-            for (int r = order - 1; r >= derivative + level; --r) {
-                const int j = first + r;
-                const double alpha = (t - knots(j)) / (knots(j + reduced - level) - knots(j));
-                b[r] = (1 - alpha) * b[r - 1] + alpha * b[r];
-            }
-        derivatives[derivative] = b[order - 1];
+        for (int derivative = lowest; derivative <= highest; ++derivative) {
+            const int reduced = order - derivative;
+            for (int level = 1; level < reduced; ++level)
+                for (int r = order - 1; r >= derivative + level; --r) {
+                    const int j = first + r;
+                    alphas_[derivative][level][r] = (t - knots(j)) / (knots(j + reduced - level) - knots(j));
+                }
+        }
     }
-}
 
-// The order-many B-splines that do not vanish on `span`, each differentiated `derivative` times, at t.
+    // derivatives[lowest..highest] for the window a.
+    void apply(Window a, double* derivatives) const {
+        for (int derivative = 0; derivative <= highest_; ++derivative) {
+            if (derivative > 0)
+                for (int r = order_ - 1; r >= derivative; --r)
+                    a[r] = (order_ - derivative) * (a[r] - a[r - 1]) / knotSpans_[derivative][r];
+            if (derivative < lowest_) continue;
+            Window b = a;
+            const int reduced = order_ - derivative;
+            for (int level = 1; level < reduced; ++level)
+                for (int r = order_ - 1; r >= derivative + level; --r) {
+                    const double alpha = alphas_[derivative][level][r];
+                    b[r] = (1 - alpha) * b[r - 1] + alpha * b[r];
+                }
+            derivatives[derivative] = b[order_ - 1];
+        }
+    }
+
+private:
+    int order_, lowest_, highest_;  // highest < order
+    std::array<Window, kMaxOrder> knotSpans_;                  // [derivative][r]: the differences' divisors
+    std::array<std::array<Window, kMaxOrder>, kMaxOrder> alphas_;  // [derivative][level][r]: de Boor's weights
+};
+
+// The order-many B-splines that do not vanish on `span`, each differentiated `derivative` (< order) times, at t.
 Window basisOnSpan(const Eigen::VectorXd& knots, int order, int span, double t, int derivative) {
+    const SpanRecurrence recurrence(knots, order, span, t, derivative, derivative);
     Window values{};
-    std::array<double, kMaxOrder + 1> derivatives;
+    std::array<double, kMaxOrder> derivatives;
     for (int r = 0; r < order; ++r) {
         Window unit{};
         unit[r] = 1;
-        evalOnSpan(knots, order, span, unit, t, derivative, derivative, derivatives.data());
+        recurrence.apply(unit, derivatives.data());
         values[r] = derivatives[static_cast<std::size_t>(derivative)];
     }
     return values;
@@ -573,11 +595,14 @@ namespace {
 // natural continuation is the Taylor polynomial of degree m - 1 at the end, so only derivatives below m
 // are taken there.
 struct SpanLocation {
-    int order = 0, span = 0, evaluated = 0;  // evaluated: the highest derivative taken on the span
+    int order = 0, evaluated = 0;  // evaluated: the highest derivative taken on the span
+    int span = 0;
     bool outside = false;
     double end = 0, t = 0;
+    std::optional<SpanRecurrence> recurrence;
 
-    SpanLocation(const Eigen::VectorXd& x, int m, double time, int highest) : order(2 * m), t(time) {
+    SpanLocation(const Eigen::VectorXd& x, const Eigen::VectorXd& knots, int m, double time, int highest)
+        : order(2 * m), t(time) {
         if (highest < 0) throw Error("smoothing spline: derivative order " + std::to_string(highest) + "; expected >= 0");
         if (!std::isfinite(t)) throw Error("smoothing spline: evaluated at a non-finite time");
         const Eigen::Index n = x.size();
@@ -585,14 +610,15 @@ struct SpanLocation {
         end = t < x(0) ? x(0) : x(n - 1);
         span = findSpan(x, order, outside ? end : t);
         evaluated = outside ? m - 1 : std::min(order - 1, highest);
+        recurrence.emplace(knots, order, span, outside ? end : t, 0, evaluated);
     }
 
-    // derivatives[0..highest] of the spline with these knots and B-spline coefficients.
-    void evaluate(const Eigen::VectorXd& knots, const Eigen::VectorXd& coefficients, int highest, double* derivatives) const {
+    // derivatives[0..highest] of the spline with these B-spline coefficients.
+    void evaluate(const Eigen::VectorXd& coefficients, int highest, double* derivatives) const {
         Window window{};
         for (int r = 0; r < order; ++r) window[static_cast<std::size_t>(r)] = coefficients(span - order + 1 + r);
         std::array<double, kMaxOrder> atSpan{};
-        evalOnSpan(knots, order, span, window, outside ? end : t, 0, evaluated, atSpan.data());
+        recurrence->apply(window, atSpan.data());
         for (int d = 0; d <= highest; ++d) {
             double value = 0;
             if (!outside) {
@@ -629,7 +655,7 @@ double SmoothingSpline::calcDerivative(double t, int order) const {
 }
 
 void SmoothingSpline::calcDerivatives(double t, int highest, double* derivatives) const {
-    SpanLocation(sites_->x, halfOrder_, t, highest).evaluate(sites_->knots, coefficients_, highest, derivatives);
+    SpanLocation(sites_->x, sites_->knots, halfOrder_, t, highest).evaluate(coefficients_, highest, derivatives);
 }
 
 void SmoothingSpline::calcDerivatives(const SmoothingSpline* splines, std::size_t count, double t, int highest,
@@ -638,8 +664,8 @@ void SmoothingSpline::calcDerivatives(const SmoothingSpline* splines, std::size_
     for (std::size_t j = 0; j < count; ++j) {
         const SmoothingSpline& s = splines[j];
         const bool sameSites = j > 0 && s.sites_ == splines[j - 1].sites_ && s.halfOrder_ == splines[j - 1].halfOrder_;
-        if (!sameSites) shared.emplace(s.sites_->x, s.halfOrder_, t, highest);
-        shared->evaluate(s.sites_->knots, s.coefficients_, highest, derivatives + j * static_cast<std::size_t>(highest + 1));
+        if (!sameSites) shared.emplace(s.sites_->x, s.sites_->knots, s.halfOrder_, t, highest);
+        shared->evaluate(s.coefficients_, highest, derivatives + j * static_cast<std::size_t>(highest + 1));
     }
 }
 
