@@ -297,16 +297,15 @@ public:
         const RowMajorMatrix rows = values;
         RowMajorMatrix c = weightedCollocationTransposed(rows);
         solveLDLT(interpolationFactors_, c);
-        const RowMajorMatrix residual = residualOf(rows, c);
-        const RowMajorMatrix coefficients = toBSplineCoefficients(c);
+        const Eigen::VectorXd squares = weightedResidualSquares(rows, c);
         std::vector<SmoothingSpline> splines;
         splines.reserve(static_cast<std::size_t>(values.cols()));
         for (Eigen::Index j = 0; j < values.cols(); ++j) {
             SmoothingSpline& s = splines.emplace_back(SmoothingSpline());
             s.halfOrder_ = m_;
             s.sites_ = sites_;
-            s.coefficients_ = coefficients.col(j);
-            s.meanSquaredResidual_ = residual.col(j).cwiseAbs2().dot(w_) / n_;
+            s.coefficients_ = toBSplineCoefficients(c, j);
+            s.meanSquaredResidual_ = squares(j) / n_;
         }
         return splines;
     }
@@ -331,8 +330,7 @@ public:
         trial.solved = true;
         trial.c = rhs_;
         solveLDLT(g, trial.c);
-        const Eigen::VectorXd residual = residualOf(y_, trial.c);
-        trial.meanSquaredResidual = residual.cwiseAbs2().dot(w_) / n_;
+        trial.meanSquaredResidual = weightedResidualSquares(y_, trial.c)(0) / n_;
         trial.residualDegreesOfFreedom = p > 0 ? p * bandOfInverse(g).dot(P_) : 0.0;
         return trial;
     }
@@ -349,7 +347,7 @@ public:
         SmoothingSpline s;
         s.halfOrder_ = m_;
         s.sites_ = sites_;
-        s.coefficients_ = toBSplineCoefficients(trial.c);
+        s.coefficients_ = toBSplineCoefficients(trial.c, 0);
         s.smoothingParameter_ = trial.p;
         s.meanSquaredResidual_ = trial.meanSquaredResidual;
         s.residualDegreesOfFreedom_ = trial.residualDegreesOfFreedom;
@@ -446,24 +444,27 @@ private:
         return result;
     }
 
-    // v - N c
+    // sum_i w_i (v - N c)_ij^2 for each column j, a row of residuals at a time (no table of them).
     template <typename Values, typename Coefficients>
-    RowMajorMatrix residualOf(const Values& v, const Coefficients& c) const {
-        RowMajorMatrix residual = v;
-        for (int i = 0; i < n_; ++i)
+    Eigen::VectorXd weightedResidualSquares(const Values& v, const Coefficients& c) const {
+        const Eigen::Index columns = v.cols();
+        Eigen::VectorXd squares = Eigen::VectorXd::Zero(columns), residual(columns);
+        for (int i = 0; i < n_; ++i) {
+            std::copy(rowOf(v, i), rowOf(v, i) + columns, residual.data());
             for (Eigen::Index k = 0; k < rowValues_.cols(); ++k)
-                addScaledRow(rowOf(residual, i), rowOf(c, rowFirst_[static_cast<std::size_t>(i)] + k), -rowValues_(i, k),
-                             residual.cols());
-        return residual;
+                addScaledRow(residual.data(), rowOf(c, rowFirst_[static_cast<std::size_t>(i)] + k), -rowValues_(i, k), columns);
+            squares += w_(i) * residual.cwiseAbs2();
+        }
+        return squares;
     }
 
-    // Z c: the B-spline coefficients of natural-basis coefficients c.
+    // Z c: the B-spline coefficients of column `column` of natural-basis coefficients c.
     template <typename Coefficients>
-    RowMajorMatrix toBSplineCoefficients(const Coefficients& c) const {
+    Eigen::VectorXd toBSplineCoefficients(const Coefficients& c, Eigen::Index column) const {
         const int count = n_ + 2 * m_ - 2;
-        RowMajorMatrix a = RowMajorMatrix::Zero(count, c.cols());
+        Eigen::VectorXd a = Eigen::VectorXd::Zero(count);
         for (int g = 0; g < count; ++g)
-            forEachNaturalColumn(g, count, [&](int column, double v) { addScaledRow(rowOf(a, g), rowOf(c, column), v, a.cols()); });
+            forEachNaturalColumn(g, count, [&](int natural, double v) { a(g) += v * c(natural, column); });
         return a;
     }
 
