@@ -154,6 +154,31 @@ TEST(SmoothingSpline, InterpolatesEveryColumnAsTheDenseNaturalSplineDoes) {
     }
 }
 
+// A table's columns evaluated together (one interval look-up and one set of de Boor's factors for the
+// splines that share sites) give each spline's calcDerivative bit for bit, inside the sites and in the
+// natural continuation beyond them, also where splines of two fits (other sites) alternate in the list.
+TEST(SmoothingSpline, ColumnsEvaluatedTogetherGiveEachSplinesOwnDerivatives) {
+    for (int degree : {1, 3, 5, 7}) {
+        const Samples a = randomSamples(20, 60 + degree), b = randomSamples(17, 70 + degree);
+        Eigen::MatrixXd valuesA(a.x.size(), 3), valuesB(b.x.size(), 2);
+        for (int c = 0; c < 3; ++c) valuesA.col(c) = randomSamples(20, 80 + 3 * degree + c).y;
+        for (int c = 0; c < 2; ++c) valuesB.col(c) = randomSamples(17, 90 + 3 * degree + c).y;
+        const std::vector<SmoothingSpline> fitA = SmoothingSpline::interpolateColumns(degree, a.x, valuesA);
+        const std::vector<SmoothingSpline> fitB = SmoothingSpline::interpolateColumns(degree, b.x, valuesB);
+        const std::vector<SmoothingSpline> mixed = {fitA[0], fitA[1], fitB[0], fitA[2], fitB[1], fitB[0]};
+        const int highest = degree;  // one beyond the last non-zero derivative
+        std::vector<double> together(mixed.size() * static_cast<std::size_t>(highest + 1));
+        for (double t : {a.x(0) - 0.3, a.x(0), a.x(3), (a.x(4) + a.x(5)) / 2, b.x(5), b.x(16) + 0.1, a.x(19), a.x(19) + 2}) {
+            SmoothingSpline::calcDerivatives(mixed.data(), mixed.size(), t, highest, together.data());
+            for (std::size_t j = 0; j < mixed.size(); ++j)
+                for (int order = 0; order <= highest; ++order)
+                    EXPECT_EQ(together[j * static_cast<std::size_t>(highest + 1) + static_cast<std::size_t>(order)],
+                              mixed[j].calcDerivative(t, order))
+                        << "degree " << degree << " spline " << j << " t " << t << " order " << order;
+        }
+    }
+}
+
 TEST(SmoothingSpline, ReproducesPolynomialsOfDegreeBelowM) {
     for (int degree : {1, 3, 5, 7}) {
         const int m = (degree + 1) / 2;

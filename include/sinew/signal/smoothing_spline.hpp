@@ -48,12 +48,12 @@ public:
     // d^order s / dt^order at t for order >= 0 (zero above the degree); throws sinew::Error for order < 0.
     double calcDerivative(double t, int order) const;
     // s and its derivatives of orders 1..highest at t into derivatives[0..highest], from one look-up of t's
-    // interval and one evaluation of its B-splines.
+    // interval (each value bitwise what calcDerivative gives).
     void calcDerivatives(double t, int highest, double* derivatives) const;
     // The derivatives 0..highest at t of splines[0..count): derivatives[j * (highest + 1) + d] for splines[j]
-    // (a column-major (highest + 1) x count matrix). Splines that interpolateColumns fitted together share
-    // their sites, and then t's interval and B-splines are evaluated once for all of them: a table's columns
-    // cost little more than one.
+    // (a column-major (highest + 1) x count matrix), each bitwise what calcDerivative gives. Splines that
+    // interpolateColumns fitted together share their sites: t's interval and the knot-dependent factors of
+    // de Boor's recurrence are then found once for all of them.
     static void calcDerivatives(const SmoothingSpline* splines, std::size_t count, double t, int highest,
                                 double* derivatives);
 
