@@ -32,7 +32,49 @@ std::string columnLabel(const CoordinatePreprocessingOptions& options, Eigen::In
     return options.columnNames.empty() ? "column " + std::to_string(j) : "column '" + options.columnNames[j] + "'";
 }
 
-void checkInput(const Eigen::VectorXd& times, const Eigen::MatrixXd& values, const CoordinatePreprocessingOptions& o) {
+// Storage::findIndex: the last row at or before t, or row 0 when t precedes every row.
+Eigen::Index lastRowAtOrBefore(const Eigen::VectorXd& times, double t) {
+    const Eigen::Index after = std::upper_bound(times.data(), times.data() + times.size(), t) - times.data();
+    return std::max<Eigen::Index>(after - 1, 0);
+}
+
+// Pads, resamples when the step is uneven, and low-passes `values` over `times` in place, as
+// Storage::pad(size / 2) then Storage::lowpassIIR(cutoff).
+void padAndFilter(Eigen::VectorXd& times, Eigen::MatrixXd& values, double cutoffHz, CoordinateTrajectory& out) {
+    const int pad = static_cast<int>(times.size() / 2);
+    Eigen::MatrixXd padded(times.size() + 2 * pad, values.cols());
+    for (Eigen::Index j = 0; j < values.cols(); ++j) padded.col(j) = padSignal(values.col(j), pad);
+    times = padSignal(times, pad);
+    values = std::move(padded);
+
+    const Eigen::Index rows = times.size();
+    const double span = times(rows - 1) - times(0);
+    const double smallestStep = (times.tail(rows - 1) - times.head(rows - 1)).minCoeff();
+    out.samplePeriod = smallestStep;
+    // Uneven steps (even the rounding of a printed table) trigger resampling at the smallest step.
+    if (span / static_cast<double>(rows - 1) - smallestStep > std::numeric_limits<double>::epsilon()) {
+        if (span / smallestStep > kMaxResampledRows) out.samplePeriod = span / kMaxResampledRows;
+        const std::vector<SmoothingSpline> splines = SmoothingSpline::interpolateColumns(kResampleDegree, times, values);
+        // The grid accumulates the step (x += dt) exactly as GCVSplineSet::constructStorage does, so its
+        // times carry the same rounding as OpenSim's output.
+        std::vector<double> grid;
+        for (double t = times(0); t <= times(rows - 1); t += out.samplePeriod) grid.push_back(t);
+        Eigen::MatrixXd resampled(static_cast<Eigen::Index>(grid.size()), values.cols()), row(1, values.cols());
+        for (Eigen::Index i = 0; i < resampled.rows(); ++i) {
+            SmoothingSpline::calcDerivatives(splines.data(), splines.size(), grid[static_cast<std::size_t>(i)], 0, row.data());
+            resampled.row(i) = row;
+        }
+        times = Eigen::Map<const Eigen::VectorXd>(grid.data(), resampled.rows());
+        values = std::move(resampled);
+        out.resampled = true;
+    }
+    for (Eigen::Index j = 0; j < values.cols(); ++j) values.col(j) = lowpassIIR(values.col(j), out.samplePeriod, cutoffHz);
+    out.usedCutoffHz = calcLowpassIIRCoefficients(out.samplePeriod, cutoffHz).cutoffHz;
+}
+
+}  // namespace
+
+void checkCoordinateTable(const Eigen::VectorXd& times, const Eigen::MatrixXd& values, const CoordinatePreprocessingOptions& o) {
     const std::string where = "coordinate preprocessing: ";
     if (values.rows() != times.size())
         throw Error(where + std::to_string(values.rows()) + " rows of values for " + std::to_string(times.size()) + " times");
@@ -78,51 +120,9 @@ void checkInput(const Eigen::VectorXd& times, const Eigen::MatrixXd& values, con
     }
 }
 
-// Storage::findIndex: the last row at or before t, or row 0 when t precedes every row.
-Eigen::Index lastRowAtOrBefore(const Eigen::VectorXd& times, double t) {
-    const Eigen::Index after = std::upper_bound(times.data(), times.data() + times.size(), t) - times.data();
-    return std::max<Eigen::Index>(after - 1, 0);
-}
-
-// Pads, resamples when the step is uneven, and low-passes `values` over `times` in place, as
-// Storage::pad(size / 2) then Storage::lowpassIIR(cutoff).
-void padAndFilter(Eigen::VectorXd& times, Eigen::MatrixXd& values, double cutoffHz, CoordinateTrajectory& out) {
-    const int pad = static_cast<int>(times.size() / 2);
-    Eigen::MatrixXd padded(times.size() + 2 * pad, values.cols());
-    for (Eigen::Index j = 0; j < values.cols(); ++j) padded.col(j) = padSignal(values.col(j), pad);
-    times = padSignal(times, pad);
-    values = std::move(padded);
-
-    const Eigen::Index rows = times.size();
-    const double span = times(rows - 1) - times(0);
-    const double smallestStep = (times.tail(rows - 1) - times.head(rows - 1)).minCoeff();
-    out.samplePeriod = smallestStep;
-    // Uneven steps (even the rounding of a printed table) trigger resampling at the smallest step.
-    if (span / static_cast<double>(rows - 1) - smallestStep > std::numeric_limits<double>::epsilon()) {
-        if (span / smallestStep > kMaxResampledRows) out.samplePeriod = span / kMaxResampledRows;
-        const std::vector<SmoothingSpline> splines = SmoothingSpline::interpolateColumns(kResampleDegree, times, values);
-        // The grid accumulates the step (x += dt) exactly as GCVSplineSet::constructStorage does, so its
-        // times carry the same rounding as OpenSim's output.
-        std::vector<double> grid;
-        for (double t = times(0); t <= times(rows - 1); t += out.samplePeriod) grid.push_back(t);
-        Eigen::MatrixXd resampled(static_cast<Eigen::Index>(grid.size()), values.cols()), row(1, values.cols());
-        for (Eigen::Index i = 0; i < resampled.rows(); ++i) {
-            SmoothingSpline::calcDerivatives(splines.data(), splines.size(), grid[static_cast<std::size_t>(i)], 0, row.data());
-            resampled.row(i) = row;
-        }
-        times = Eigen::Map<const Eigen::VectorXd>(grid.data(), resampled.rows());
-        values = std::move(resampled);
-        out.resampled = true;
-    }
-    for (Eigen::Index j = 0; j < values.cols(); ++j) values.col(j) = lowpassIIR(values.col(j), out.samplePeriod, cutoffHz);
-    out.usedCutoffHz = calcLowpassIIRCoefficients(out.samplePeriod, cutoffHz).cutoffHz;
-}
-
-}  // namespace
-
 CoordinateTrajectory preprocessCoordinates(const Eigen::VectorXd& times, const Eigen::MatrixXd& values,
                                            const CoordinatePreprocessingOptions& options) {
-    checkInput(times, values, options);
+    checkCoordinateTable(times, values, options);
     CoordinateTrajectory out;
     out.processedTimes = times;
     out.processedValues = values;

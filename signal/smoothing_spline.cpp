@@ -386,13 +386,14 @@ private:
         }
     }
 
-    // B-spline g as natural basis functions: (column, weight) pairs.
+    // B-spline g as natural basis functions: (column, weight) pairs in increasing column order, the order in
+    // which sums over them are taken.
     template <typename Visit>
     void forEachNaturalColumn(int g, int count, Visit visit) const {
         if (g < 2 * m_ - 1) {
             for (int f = 0; f < m_; ++f) visit(f, leftEnd_(g, f));
         } else if (g > count - 2 * m_) {
-            for (int f = 0; f < m_; ++f) visit(n_ - 1 - f, rightEnd_(count - 1 - g, f));
+            for (int f = m_ - 1; f >= 0; --f) visit(n_ - 1 - f, rightEnd_(count - 1 - g, f));
         } else {
             visit(g - m_ + 1, 1.0);
         }
@@ -433,27 +434,34 @@ private:
         }
     }
 
-    // N^T W v for a column or a table of columns (row-major: each step one row of every column).
+    // N^T (W v) for a column or a table of columns (row-major: each step one row of every column).
     template <typename Values>
     RowMajorMatrix weightedCollocationTransposed(const Values& v) const {
-        RowMajorMatrix result = RowMajorMatrix::Zero(n_, v.cols());
-        for (int i = 0; i < n_; ++i)
+        const Eigen::Index columns = v.cols();
+        RowMajorMatrix result = RowMajorMatrix::Zero(n_, columns);
+        Eigen::VectorXd weighted(columns);
+        for (int i = 0; i < n_; ++i) {
+            for (Eigen::Index j = 0; j < columns; ++j) weighted(j) = w_(i) * rowOf(v, i)[j];
             for (Eigen::Index c = 0; c < rowValues_.cols(); ++c)
-                addScaledRow(rowOf(result, rowFirst_[static_cast<std::size_t>(i)] + c), rowOf(v, i),
-                             w_(i) * rowValues_(i, c), v.cols());
+                addScaledRow(rowOf(result, rowFirst_[static_cast<std::size_t>(i)] + c), weighted.data(), rowValues_(i, c),
+                             columns);
+        }
         return result;
     }
 
-    // sum_i w_i (v - N c)_ij^2 for each column j, a row of residuals at a time (no table of them).
+    // sum_i w_i (v - N c)_ij^2 for each column j: each column's residual v - (N c) formed and weighed as
+    // the sparse products did, one column at a time (no table of residuals).
     template <typename Values, typename Coefficients>
     Eigen::VectorXd weightedResidualSquares(const Values& v, const Coefficients& c) const {
-        const Eigen::Index columns = v.cols();
-        Eigen::VectorXd squares = Eigen::VectorXd::Zero(columns), residual(columns);
-        for (int i = 0; i < n_; ++i) {
-            std::copy(rowOf(v, i), rowOf(v, i) + columns, residual.data());
-            for (Eigen::Index k = 0; k < rowValues_.cols(); ++k)
-                addScaledRow(residual.data(), rowOf(c, rowFirst_[static_cast<std::size_t>(i)] + k), -rowValues_(i, k), columns);
-            squares += w_(i) * residual.cwiseAbs2();
+        Eigen::VectorXd squares(v.cols()), residual(n_);
+        for (Eigen::Index j = 0; j < v.cols(); ++j) {
+            for (int i = 0; i < n_; ++i) {
+                const Eigen::Index first = rowFirst_[static_cast<std::size_t>(i)];
+                double r = v(i, j);
+                for (Eigen::Index k = 0; k < rowValues_.cols(); ++k) r -= rowValues_(i, k) * c(first + k, j);
+                residual(i) = r;
+            }
+            squares(j) = residual.cwiseAbs2().dot(w_);
         }
         return squares;
     }
@@ -596,14 +604,16 @@ namespace {
 // natural continuation is the Taylor polynomial of degree m - 1 at the end, so only derivatives below m
 // are taken there.
 struct SpanLocation {
-    int order = 0, evaluated = 0;  // evaluated: the highest derivative taken on the span
+    int order = 0, lowest = 0, evaluated = 0;  // the derivatives wanted from `lowest`; `evaluated`: the highest taken on the span
     int span = 0;
     bool outside = false;
     double end = 0, t = 0;
     std::optional<SpanRecurrence> recurrence;
 
-    SpanLocation(const Eigen::VectorXd& x, const Eigen::VectorXd& knots, int m, double time, int highest)
-        : order(2 * m), t(time) {
+    // The derivatives lowest..highest (0 <= lowest <= highest) at t: a caller after one derivative skips the
+    // lower ones' de Boor passes.
+    SpanLocation(const Eigen::VectorXd& x, const Eigen::VectorXd& knots, int m, double time, int lowestWanted, int highest)
+        : order(2 * m), lowest(lowestWanted), t(time) {
         if (highest < 0) throw Error("smoothing spline: derivative order " + std::to_string(highest) + "; expected >= 0");
         if (!std::isfinite(t)) throw Error("smoothing spline: evaluated at a non-finite time");
         const Eigen::Index n = x.size();
@@ -611,16 +621,16 @@ struct SpanLocation {
         end = t < x(0) ? x(0) : x(n - 1);
         span = findSpan(x, order, outside ? end : t);
         evaluated = outside ? m - 1 : std::min(order - 1, highest);
-        recurrence.emplace(knots, order, span, outside ? end : t, 0, evaluated);
+        recurrence.emplace(knots, order, span, outside ? end : t, std::min(lowest, evaluated), evaluated);
     }
 
-    // derivatives[0..highest] of the spline with these B-spline coefficients.
+    // derivatives[lowest..highest] of the spline with these B-spline coefficients.
     void evaluate(const Eigen::VectorXd& coefficients, int highest, double* derivatives) const {
         Window window{};
         for (int r = 0; r < order; ++r) window[static_cast<std::size_t>(r)] = coefficients(span - order + 1 + r);
         std::array<double, kMaxOrder> atSpan{};
         recurrence->apply(window, atSpan.data());
-        for (int d = 0; d <= highest; ++d) {
+        for (int d = lowest; d <= highest; ++d) {
             double value = 0;
             if (!outside) {
                 value = d <= evaluated ? atSpan[static_cast<std::size_t>(d)] : 0.0;
@@ -651,12 +661,12 @@ double SmoothingSpline::calcDerivative(double t, int order) const {
         return 0;
     }
     std::array<double, kMaxOrder> derivatives;
-    calcDerivatives(t, order, derivatives.data());
+    SpanLocation(sites_->x, sites_->knots, halfOrder_, t, order, order).evaluate(coefficients_, order, derivatives.data());
     return derivatives[static_cast<std::size_t>(order)];
 }
 
 void SmoothingSpline::calcDerivatives(double t, int highest, double* derivatives) const {
-    SpanLocation(sites_->x, sites_->knots, halfOrder_, t, highest).evaluate(coefficients_, highest, derivatives);
+    SpanLocation(sites_->x, sites_->knots, halfOrder_, t, 0, highest).evaluate(coefficients_, highest, derivatives);
 }
 
 void SmoothingSpline::calcDerivatives(const SmoothingSpline* splines, std::size_t count, double t, int highest,
@@ -665,7 +675,7 @@ void SmoothingSpline::calcDerivatives(const SmoothingSpline* splines, std::size_
     for (std::size_t j = 0; j < count; ++j) {
         const SmoothingSpline& s = splines[j];
         const bool sameSites = j > 0 && s.sites_ == splines[j - 1].sites_ && s.halfOrder_ == splines[j - 1].halfOrder_;
-        if (!sameSites) shared.emplace(s.sites_->x, s.sites_->knots, s.halfOrder_, t, highest);
+        if (!sameSites) shared.emplace(s.sites_->x, s.sites_->knots, s.halfOrder_, t, 0, highest);
         shared->evaluate(s.coefficients_, highest, derivatives + j * static_cast<std::size_t>(highest + 1));
     }
 }

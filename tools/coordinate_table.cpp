@@ -69,12 +69,13 @@ bool isInDegrees(const Model& model, const StorageTable& table, int q) {
 }
 
 // The columns are independent (each padded, filtered and splined alone, as OpenSim does), so the table's
-// two halves are processed side by side, each column's arithmetic unchanged. Where both halves hold a bad
-// value, the first half's is reported.
+// two halves are processed side by side, each column's arithmetic unchanged. The whole table is checked
+// first, so that a bad value is reported as processing it whole would.
 CoordinateTrajectory preprocessInHalves(const Eigen::VectorXd& times, const Eigen::MatrixXd& q,
                                         const CoordinatePreprocessingOptions& options) {
     const Eigen::Index columns = q.cols(), half = columns / 2;
     if (half == 0) return preprocessCoordinates(times, q, options);
+    checkCoordinateTable(times, q, options);
     auto optionsFor = [&](Eigen::Index first, Eigen::Index count) {
         CoordinatePreprocessingOptions part = options;
         part.columnNames.assign(options.columnNames.begin() + first, options.columnNames.begin() + first + count);

@@ -1,7 +1,6 @@
 #include "sinew/tools/inverse_dynamics_tool.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -71,8 +70,8 @@ StorageTable calcGeneralizedForceTable(const Model& model, const StorageTable& c
     result.times.assign(trajectory->times.data(), trajectory->times.data() + frames);
     result.rows.resize(static_cast<std::size_t>(frames));
     // The frames are independent: two halves side by side, each with its own buffers. The first half's
-    // thread reports the progress of both.
-    std::atomic<int> framesDone{0};
+    // thread reports progress, counting its own frames (1, 2, .. : the second half keeps pace), and the end
+    // is reported once both are done.
     int framesReported = 0;
     auto runFrames = [&](int first, int end, bool reports) {
         Data data(model);
@@ -92,9 +91,8 @@ StorageTable calcGeneralizedForceTable(const Model& model, const StorageTable& c
             }
             result.rows[static_cast<std::size_t>(frame.index)].assign(tau.data(), tau.data() + tau.size());
         };
-        auto progress = [&](int, int) {
-            const int done = ++framesDone;
-            if (reports && options.onFrame) options.onFrame(framesReported = done, frames);
+        auto progress = [&](int frame, int) {
+            if (reports && options.onFrame) options.onFrame(framesReported = frame, frames);
         };
         forEachMotionFrame(model, *trajectory, measured ? &*measured : nullptr, visit, progress, first, end);
     };
@@ -123,7 +121,13 @@ std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std:
                   [&] {
                       if (!setup.externalLoadsFile.empty()) loads = readExternalLoads(setup.externalLoadsFile);
                       coordinateFile = readStorageFile(setup.coordinatesFile);
-                      if (loads) curves.emplace(*loads);
+                      // A fit that fails is left to be done again where the loads come in turn, after the
+                      // coordinates' errors and the model's notes, and fails there with the same error.
+                      try {
+                          if (loads) curves.emplace(*loads);
+                      } catch (const Error&) {
+                          curves.reset();
+                      }
                   });
     const Model& model = *loadedModel;
     if (notes) {

@@ -1,5 +1,6 @@
 #include "sinew/tools/measured_loads.hpp"
 
+#include <algorithm>
 #include <array>
 #include <utility>
 
@@ -35,9 +36,6 @@ ExternalLoadCurves::ExternalLoadCurves(const ExternalLoads& loads) {
         read.first = columns.size();
         auto addTriple = [&](const std::array<int, 3>& triple, int& offset) {
             if (triple[0] < 0) return;
-            // Forces (N), torques (N m) and points (m) of a measured load stay far below this; beyond it the
-            // generalized forces overflow or drown every other load.
-            checkStorageMagnitudes(table, {triple.begin(), triple.end()}, 1e7, "an external load (N, N m or m)");
             offset = read.count;
             read.count += 3;
             columns.insert(columns.end(), triple.begin(), triple.end());
@@ -59,6 +57,13 @@ MeasuredLoads::MeasuredLoads(const Model& model, const ExternalLoads& loads)
 
 MeasuredLoads::MeasuredLoads(const Model& model, const ExternalLoads& loads, ExternalLoadCurves curves)
     : curves_(std::move(curves)) {
+    const auto applied = std::count_if(loads.forces.begin(), loads.forces.end(),
+                                       [](const ExternalForce& force) { return force.appliesForce; });
+    if (static_cast<std::size_t>(applied) != curves_.forces_.size())
+        throw Error(loads.file + ": the load curves were fitted to other external loads (" +
+                    std::to_string(curves_.forces_.size()) + " forces, not " + std::to_string(applied) + ")");
+    // Force by force, its bodies and then its columns' magnitudes: the order the errors came in when the
+    // curves were fitted here.
     std::size_t next = 0;
     for (const ExternalForce& force : loads.forces) {
         if (!force.appliesForce) continue;
@@ -66,12 +71,13 @@ MeasuredLoads::MeasuredLoads(const Model& model, const ExternalLoads& loads, Ext
         load.appliedTo = findBody(model, force.appliedToBody, force, "applied-to");
         load.forceFrame = findBody(model, force.forceExpressedInBody, force, "force-expressed-in");
         load.pointFrame = findBody(model, force.pointExpressedInBody, force, "point-expressed-in");
-        if (next == curves_.forces_.size())
-            throw Error(loads.file + ": the load curves were fitted to other external loads (fewer forces)");
+        for (const std::array<int, 3>* triple : {&force.forceColumns, &force.pointColumns, &force.torqueColumns})
+            if ((*triple)[0] >= 0)
+                // Forces (N), torques (N m) and points (m) of a measured load stay far below this; beyond it the
+                // generalized forces overflow or drown every other load.
+                checkStorageMagnitudes(loads.data, {triple->begin(), triple->end()}, 1e7, "an external load (N, N m or m)");
         load.columns = curves_.forces_[next++];
     }
-    if (next != curves_.forces_.size())
-        throw Error(loads.file + ": the load curves were fitted to other external loads (more forces)");
 }
 
 void MeasuredLoads::addLinkForces(const Data& data, double t, std::vector<SpatialVector>& linkForces) const {

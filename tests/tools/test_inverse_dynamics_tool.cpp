@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 
 #include "sinew/core/forward_simulation.hpp"
 #include "sinew/io/model_file.hpp"
@@ -122,6 +123,60 @@ TEST(InverseDynamicsTool, FilesReadAtOnceReportTheFirstBadOneInTurn) {
     setup.externalLoadsFile.clear();
     EXPECT_TRUE(test::throwsErrorAt(run, setup.coordinatesFile + ":", {"cannot"}, "the motion missing"));
     EXPECT_FALSE(std::filesystem::exists(output));
+}
+
+// A sinusoidal arm26 motion with every coordinate, in degrees.
+StorageTable makeArm26Motion(const Model& model, int rows) {
+    StorageTable table;
+    table.inDegrees = true;
+    table.columns = getCoordinateNames(model);
+    for (int r = 0; r < rows; ++r) {
+        const double t = 0.02 * r, a = 0.3 * std::sin(3 * t);
+        table.times.push_back(t);
+        std::vector<double> row(table.columns.size());
+        for (std::size_t c = 0; c < row.size(); ++c) {
+            if (table.columns[c] == "r_shoulder_qw") row[c] = std::cos(a);
+            else if (table.columns[c] == "r_shoulder_qz") row[c] = std::sin(a);
+            else if (table.columns[c] == "r_elbow") row[c] = 60 + 20 * std::sin(2 * t);
+        }
+        table.rows.push_back(row);
+    }
+    return table;
+}
+
+// The frames run in two halves on two threads; progress still starts at the first frame, only rises, and
+// ends at the last, which is what `sinew inverse-dynamics` times its first frame and the rest by.
+TEST(InverseDynamics, ProgressRisesFromTheFirstFrameToTheLast) {
+    const Model model = test::loadArm26().model;
+    const StorageTable motion = makeArm26Motion(model, 51);
+    std::vector<std::pair<int, int>> calls;
+    InverseDynamicsOptions options;
+    options.onFrame = [&](int frame, int frames) { calls.emplace_back(frame, frames); };
+    const StorageTable result = runInverseDynamics(model, motion, nullptr, options);
+    ASSERT_EQ(result.rows.size(), 51u);
+    ASSERT_FALSE(calls.empty());
+    EXPECT_EQ(calls.front().first, 1);
+    EXPECT_EQ(calls.back().first, 51);
+    for (std::size_t i = 0; i < calls.size(); ++i) {
+        EXPECT_EQ(calls[i].second, 51);
+        if (i > 0) {
+            EXPECT_GT(calls[i].first, calls[i - 1].first);
+        }
+    }
+}
+
+// The coordinates' columns are processed in two halves side by side; with a bad value in each half, the
+// error is still the first bad row of the whole table, as processing it whole reports.
+TEST(InverseDynamics, BadValuesInBothHalvesReportTheFirstBadRow) {
+    const Model model = test::loadArm26().model;
+    const StorageTable motion = makeArm26Motion(model, 51);
+    CoordinateSamples samples = readCoordinateSamples(model, motion);
+    const Eigen::Index last = samples.q.cols() - 1;
+    samples.q(9, 0) = std::numeric_limits<double>::quiet_NaN();
+    samples.q(2, last) = std::numeric_limits<double>::infinity();
+    EXPECT_TRUE(test::throwsErrorAt([&] { preprocessCoordinateSamples(model, samples, 6, 0, 1); }, "coordinate preprocessing: row 2",
+                                    {getCoordinateNames(model)[static_cast<std::size_t>(last)], "not finite"},
+                                    "bad values at (row 9, column 0) and (row 2, the last column)"));
 }
 
 TEST(InverseDynamicsTool, Gait2354MatchesOpenSim) {

@@ -22,7 +22,9 @@ struct InverseDynamicsOptions {
     // The model's force elements (springs, bushings, limits, contact) act on the motion, as OpenSim applies
     // every force forces_to_exclude does not name; the generalized forces are then what the rest must give.
     bool forceElements = true;
-    std::function<void(int frame, int frames)> onFrame;  // progress, optional
+    // Progress, optional: frame rises from 1 and the last call has frame == frames. The frames run in two
+    // halves on two threads, so it is called from one thread, not always the caller's, and may skip counts.
+    std::function<void(int frame, int frames)> onFrame;
 };
 
 // Generalized forces per frame, one column per speed named as OpenSim names them ("<coordinate>_moment"

@@ -36,7 +36,7 @@ public:
     // Resolves every applied force's bodies to links of `model` (ground included); throws ModelError at the
     // ExternalForce's line for a body the model lacks.
     MeasuredLoads(const Model& model, const ExternalLoads& loads);
-    // The same with the curves fitted beforehand from the same `loads`.
+    // The same with the curves fitted beforehand from the same `loads`; its errors come in the same order.
     MeasuredLoads(const Model& model, const ExternalLoads& loads, ExternalLoadCurves curves);
 
     // Adds each applied force, torque and its moment to linkForces (one per link, Data::F_G convention: moment
