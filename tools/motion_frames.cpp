@@ -14,7 +14,8 @@ void forEachMotionFrame(const Model& model, const CoordinateTrajectory& trajecto
     Eigen::VectorXd q(trajectory.q.cols()), u(trajectory.qdot.cols()), udot(trajectory.qddot.cols());
     const bool hasSpeeds = trajectory.qdot.rows() > 0, hasAccelerations = trajectory.qddot.rows() > 0;
     const int frames = static_cast<int>(trajectory.times.size());
-    for (int i = firstFrame; i < (endFrame < 0 ? frames : std::min(endFrame, frames)); ++i) {
+    const int endRow = endFrame < 0 ? frames : std::min(endFrame, frames);
+    for (int i = firstFrame; i < endRow; ++i) {
         const double t = trajectory.times[i];
         q = trajectory.q.row(i).transpose();
         if (hasSpeeds) u = trajectory.qdot.row(i).transpose();

@@ -47,13 +47,13 @@ struct CoordinateTrajectory {
 // `times` (nRows) strictly increasing; `values` (nRows x nColumns), one column per coordinate as in the
 // file. Throws sinew::Error naming the row, column or option at fault (non-finite numbers, times not
 // increasing, too few rows for the spline, a time range that selects no row).
+CoordinateTrajectory preprocessCoordinates(const Eigen::VectorXd& times, const Eigen::MatrixXd& values,
+                                           const CoordinatePreprocessingOptions& options = {});
+
 // The checks preprocessCoordinates starts with, and their errors: sizes, names and scales, rows enough for
 // the splines, times finite and increasing, values finite, row by row. For a caller that processes the
 // columns in parts, so that the whole table's first bad row is the one reported.
 void checkCoordinateTable(const Eigen::VectorXd& times, const Eigen::MatrixXd& values,
                           const CoordinatePreprocessingOptions& options);
-
-CoordinateTrajectory preprocessCoordinates(const Eigen::VectorXd& times, const Eigen::MatrixXd& values,
-                                           const CoordinatePreprocessingOptions& options = {});
 
 }  // namespace sinew
