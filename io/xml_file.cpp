@@ -27,10 +27,10 @@ pugi::xml_node elementFrom(pugi::xml_node node) {
 
 }  // namespace
 
-std::string trimXmlSpace(const std::string& text) {
+std::string trimXmlSpace(std::string_view text) {
     const char* const blanks = " \t\r\n";
     const std::size_t begin = text.find_first_not_of(blanks);
-    return begin == std::string::npos ? "" : text.substr(begin, text.find_last_not_of(blanks) - begin + 1);
+    return begin == std::string_view::npos ? "" : std::string(text.substr(begin, text.find_last_not_of(blanks) - begin + 1));
 }
 
 pugi::xml_node firstChildElement(pugi::xml_node node) { return elementFrom(node.first_child()); }

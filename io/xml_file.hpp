@@ -5,6 +5,7 @@
 #include <pugixml.hpp>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace sinew {
@@ -38,7 +39,7 @@ private:
 };
 
 // `text` without the white space XML allows around it (space, tab, CR, LF).
-std::string trimXmlSpace(const std::string& text);
+std::string trimXmlSpace(std::string_view text);
 
 // The first child element of `node`, and its next sibling element: pugixml keeps the text between
 // elements as nodes of their own. Null when there is none.

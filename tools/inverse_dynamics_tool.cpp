@@ -10,6 +10,7 @@
 #include "sinew/core/data.hpp"
 #include "sinew/core/error.hpp"
 #include "sinew/core/inverse_dynamics.hpp"
+#include "sinew/core/kinematics.hpp"
 #include "sinew/tools/coordinate_table.hpp"
 #include "sinew/tools/force_element_loads.hpp"
 #include "sinew/tools/measured_loads.hpp"
@@ -74,11 +75,12 @@ StorageTable calcGeneralizedForceTable(const Model& model, const StorageTable& c
     // is reported once both are done.
     int framesReported = 0;
     auto runFrames = [&](int first, int end, bool reports) {
-        Data data(model);
         Eigen::VectorXd tau(model.getNumU());
         ForceElementLoads elements(model);
         auto visit = [&](const MotionFrame& frame) {
-            calcInverseDynamics(model, data, frame.q, frame.u, frame.udot, frame.appliedLinkForces, tau);
+            Data& data = frame.data;
+            if (!frame.positionsAtQ) calcPositionKinematics(model, data, frame.q);
+            calcInverseDynamicsAtPositions(model, data, frame.q, frame.u, frame.udot, frame.appliedLinkForces, tau);
             if (options.forceElements) elements.subtractFrom(data, tau);
             if (!tau.allFinite()) {
                 Eigen::Index k = 0;

@@ -21,7 +21,7 @@ void forEachMotionFrame(const Model& model, const CoordinateTrajectory& trajecto
         if (hasSpeeds) u = trajectory.qdot.row(i).transpose();
         if (hasAccelerations) udot = trajectory.qddot.row(i).transpose();
         calcAppliedLinkForces(model, loads, data, t, q, linkForces);
-        visit(MotionFrame{i, t, q, u, udot, linkForces});
+        visit(MotionFrame{i, t, q, u, udot, linkForces, data, loads != nullptr});
         if (onFrame) onFrame(i + 1, frames);
     }
 }

@@ -20,6 +20,7 @@
 #include "sinew/io/model_loading.hpp"
 #include "sinew/io/osim_model.hpp"
 #include "sinew/io/osim_model_converter.hpp"
+#include "support/error_assertions.hpp"
 
 namespace sinew {
 namespace {
@@ -102,6 +103,17 @@ TEST(OsimQuirks, NegativeMomentsAndLargeProductsAreInvalidToo) {
             << inertia;
         EXPECT_TRUE(hasLineWith(conversion.warnings, "Body 'a'", "invalid inertia")) << inertia;
     }
+}
+
+// A muscle's curve parameters are read whole: "0.6x" is no number (the C library's stod took its 0.6).
+TEST(OsimQuirks, AMuscleParameterWithTrailingTextIsRefused) {
+    std::string text = makeModel("0.01 0.02 0.025 0 0 0");
+    const std::string end = "</tendon_slack_length>";
+    text.insert(text.find(end) + end.size(), "<FmaxMuscleStrain>0.6x</FmaxMuscleStrain>");
+    const std::string path = writeTestFile(text);
+    const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(text.find("<Thelen2003Muscle")), '\n'));
+    EXPECT_TRUE(test::throwsErrorAt([&] { convertOsimModel(readOsimModel(path)); }, path + ":" + std::to_string(line),
+                                    {"muscle 'pull'", "FmaxMuscleStrain '0.6x' is not a number"}, text));
 }
 
 TEST(OsimQuirks, AValidInertiaIsKeptAsGiven) {

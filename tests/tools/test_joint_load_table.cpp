@@ -236,7 +236,8 @@ TEST(JointLoadTable, WholeBodyLoopsKeepTheSolversForcesAndTheRootNewtonsBalance)
     ASSERT_NE(frame.status, DistributionStatus::Failed);
     StorageTable table;
     JointLoadTable loads(model, contacts, table);
-    loads.appendFrame(MotionFrame{0, 0.0, q, zero, zero, noLoads}, analysis, frame);
+    Data frameData(model);
+    loads.appendFrame(MotionFrame{0, 0.0, q, zero, zero, noLoads, frameData, false}, analysis, frame);
     const JointReactionsData& reactions = loads.getReactions();
 
     double mass = 0;

@@ -19,4 +19,10 @@ void calcInverseDynamics(const Model& model, Data& data, const Eigen::VectorXd& 
                          const Eigen::VectorXd& udot, const std::vector<SpatialVector>& appliedLinkForces,
                          Eigen::Ref<Eigen::VectorXd> tau);
 
+// The same, with Data's position kinematics already at q (calcPositionKinematics), as they are where the
+// applied forces were evaluated at q: the poses are not computed twice.
+void calcInverseDynamicsAtPositions(const Model& model, Data& data, const Eigen::VectorXd& q, const Eigen::VectorXd& u,
+                                    const Eigen::VectorXd& udot, const std::vector<SpatialVector>& appliedLinkForces,
+                                    Eigen::Ref<Eigen::VectorXd> tau);
+
 }  // namespace sinew

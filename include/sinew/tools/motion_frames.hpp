@@ -6,6 +6,7 @@
 #include <functional>
 #include <vector>
 
+#include "sinew/core/data.hpp"
 #include "sinew/core/model.hpp"
 #include "sinew/core/spatial.hpp"
 #include "sinew/signal/coordinate_preprocessing.hpp"
@@ -21,6 +22,10 @@ struct MotionFrame {
     const Eigen::VectorXd& udot;  // (nu) its qddot row; empty when it has no accelerations
     // One spatial force per link (Data::F_G convention): the measured loads at (time, q), zero without.
     const std::vector<SpatialVector>& appliedLinkForces;
+    // The loop's buffers, which the visitor may use as its own: where loads were evaluated, they hold the
+    // position kinematics at q (positionsAtQ), which the visitor then need not compute again.
+    Data& data;
+    bool positionsAtQ;
 };
 
 // For each row of `trajectory` in order: visit(frame), then onFrame(index + 1, frames) when given. The
