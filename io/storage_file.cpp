@@ -178,6 +178,38 @@ private:
                " labels)";
     }
 
+    // The common row, `expected` short decimals (number_text.hpp) separated by tabs, blanks around them
+    // allowed, read in one pass without splitting it into cells. False for any other line, which the cells
+    // then read (and report): the values read here are those the cells would give.
+    // `time` is the first cell's text.
+    static bool readPlainRow(std::string_view line, std::size_t expected, std::vector<double>& values,
+                             std::string_view& time) {
+        values.clear();
+        const char* p = line.data();
+        const char* const end = p + line.size();
+        while (true) {
+            while (p != end && *p == ' ') ++p;
+            const char* const start = p;
+            double value = 0;
+            p = readShortDecimal(p, end, value);
+            if (!p) return false;
+            if (values.empty()) time = std::string_view(start, static_cast<std::size_t>(p - start));
+            values.push_back(value);
+            while (p != end && *p == ' ') ++p;
+            if (p == end) return values.size() == expected;
+            if (*p++ != '\t') return false;
+        }
+    }
+
+    void addRow(const std::vector<double>& values, std::string_view time) {
+        if (!table_.times.empty() && !(values.front() > table_.times.back()))
+            fail(lineNumber_, "time " + std::string(time) + " does not increase (the row before is at " +
+                                  std::to_string(table_.times.back()) + ")");
+        table_.rowLines.push_back(lineNumber_);
+        table_.times.push_back(values.front());
+        table_.rows.emplace_back(values.begin() + 1, values.end());
+    }
+
     void readRows() {
         std::string line;
         std::vector<std::string_view> cells;
@@ -186,6 +218,11 @@ private:
             if (trimView(line).empty()) continue;
             const std::size_t expected = table_.columns.size() + 1;
             const bool allowNonFinite = nonFinite_ == NonFinite::Allow;
+            std::string_view time;
+            if (readPlainRow(line, expected, values, time)) {
+                addRow(values, time);
+                continue;
+            }
             splitCells(line, cells, allowNonFinite ? expected : 0);
             values.clear();
             for (std::size_t c = 0; c < cells.size(); ++c) {
@@ -205,12 +242,7 @@ private:
                 fail(lineNumber_, std::to_string(values.size()) + " values, expected " + std::to_string(expected) +
                                       (values.size() < expected ? "; the first missing is " : "; the first extra is ") +
                                       describeColumn(std::min(values.size(), expected)));
-            if (!table_.times.empty() && !(values.front() > table_.times.back()))
-                fail(lineNumber_, "time " + std::string(cells.front()) + " does not increase (the row before is at " +
-                                      std::to_string(table_.times.back()) + ")");
-            table_.rowLines.push_back(lineNumber_);
-            table_.times.push_back(values.front());
-            table_.rows.emplace_back(values.begin() + 1, values.end());
+            addRow(values, cells.front());
         }
     }
 };
