@@ -13,6 +13,7 @@ namespace sinew {
 namespace {
 
 constexpr double kMaxCoordinateMagnitude = 1e6;
+constexpr double kDegree = M_PI / 180;  // rad
 // A stored quaternion is unit up to its printed digits (4 decimals: |q| within 2e-4 of 1); further off, the
 // columns are not a quaternion (a wrong column order, angles in quaternion columns).
 constexpr double kQuaternionNormTolerance = 0.01;
@@ -68,6 +69,43 @@ bool isInDegrees(const Model& model, const StorageTable& table, int q) {
            !isQuaternionComponent(model, q);
 }
 
+// One trajectory from columns of others that share their rows (one table's): column c is column
+// source[c].second of parts[source[c].first].
+CoordinateTrajectory joinColumns(const std::vector<const CoordinateTrajectory*>& parts,
+                                 const std::vector<std::pair<std::size_t, Eigen::Index>>& source) {
+    const CoordinateTrajectory& first = *parts.front();
+    CoordinateTrajectory whole;
+    whole.times = first.times;
+    whole.processedTimes = first.processedTimes;
+    whole.firstRow = first.firstRow;
+    whole.samplePeriod = first.samplePeriod;
+    whole.usedCutoffHz = first.usedCutoffHz;
+    whole.resampled = first.resampled;
+    const Eigen::Index columns = static_cast<Eigen::Index>(source.size());
+    whole.q.resize(first.q.rows(), columns);
+    whole.qdot.resize(first.qdot.rows(), columns);
+    whole.qddot.resize(first.qddot.rows(), columns);
+    whole.processedValues.resize(first.processedValues.rows(), columns);
+    for (Eigen::Index c = 0; c < columns; ++c) {
+        const auto [part, j] = source[static_cast<std::size_t>(c)];
+        const CoordinateTrajectory& from = *parts[part];
+        whole.q.col(c) = from.q.col(j);
+        whole.qdot.col(c) = from.qdot.col(j);
+        whole.qddot.col(c) = from.qddot.col(j);
+        whole.processedValues.col(c) = from.processedValues.col(j);
+        whole.splines.push_back(from.splines[static_cast<std::size_t>(j)]);
+    }
+    return whole;
+}
+
+CoordinatePreprocessingOptions selectColumns(const CoordinatePreprocessingOptions& options, const std::vector<Eigen::Index>& columns) {
+    CoordinatePreprocessingOptions part = options;
+    part.columnNames.clear();
+    for (const Eigen::Index c : columns) part.columnNames.push_back(options.columnNames[static_cast<std::size_t>(c)]);
+    if (options.columnScales.size() != 0) part.columnScales = options.columnScales(columns);
+    return part;
+}
+
 // The columns are independent (each padded, filtered and splined alone, as OpenSim does), so the table's
 // two halves are processed side by side, each column's arithmetic unchanged. The whole table is checked
 // first, so that a bad value is reported as processing it whole would.
@@ -76,27 +114,66 @@ CoordinateTrajectory preprocessInHalves(const Eigen::VectorXd& times, const Eige
     const Eigen::Index columns = q.cols(), half = columns / 2;
     if (half == 0) return preprocessCoordinates(times, q, options);
     checkCoordinateTable(times, q, options);
-    auto optionsFor = [&](Eigen::Index first, Eigen::Index count) {
-        CoordinatePreprocessingOptions part = options;
-        part.columnNames.assign(options.columnNames.begin() + first, options.columnNames.begin() + first + count);
-        if (options.columnScales.size() != 0) part.columnScales = options.columnScales.segment(first, count);
-        return part;
-    };
-    std::optional<CoordinateTrajectory> left, right;
-    runSideBySide([&] { left = preprocessCoordinates(times, q.leftCols(half), optionsFor(0, half)); },
-                  [&] { right = preprocessCoordinates(times, q.rightCols(columns - half), optionsFor(half, columns - half)); });
-    CoordinateTrajectory whole = std::move(*left);
-    auto append = [](Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-        Eigen::MatrixXd joined(a.rows(), a.cols() + b.cols());
-        joined << a, b;
-        a = std::move(joined);
-    };
-    append(whole.q, right->q);
-    append(whole.qdot, right->qdot);
-    append(whole.qddot, right->qddot);
-    append(whole.processedValues, right->processedValues);
-    whole.splines.insert(whole.splines.end(), right->splines.begin(), right->splines.end());
-    return whole;
+    std::vector<Eigen::Index> left, right;
+    std::vector<std::pair<std::size_t, Eigen::Index>> source;
+    for (Eigen::Index c = 0; c < columns; ++c) {
+        source.emplace_back(c < half ? 0 : 1, c < half ? c : c - half);
+        (c < half ? left : right).push_back(c);
+    }
+    std::optional<CoordinateTrajectory> leftPart, rightPart;
+    runSideBySide([&] { leftPart = preprocessCoordinates(times, q.leftCols(half), selectColumns(options, left)); },
+                  [&] { rightPart = preprocessCoordinates(times, q.rightCols(columns - half), selectColumns(options, right)); });
+    return joinColumns({&*leftPart, &*rightPart}, source);
+}
+
+// The columns `processed` holds as the samples have them (the same numbers: the table's times and values,
+// converted by the same factor) are taken from it; the others are processed here.
+CoordinateTrajectory preprocessWithProcessedTable(const CoordinateSamples& samples, const CoordinatePreprocessingOptions& options,
+                                                  const ProcessedMotionTable& processed) {
+    const Eigen::Index columns = samples.q.cols();
+    if (samples.scales.size() != columns || processed.times.size() != samples.times.size() ||
+        processed.times != samples.times)
+        return preprocessInHalves(samples.times, samples.q, options);
+    std::vector<std::pair<std::size_t, Eigen::Index>> source;
+    std::vector<Eigen::Index> others;
+    for (Eigen::Index c = 0; c < columns; ++c) {
+        const auto found = std::find(processed.columns.begin(), processed.columns.end(), options.columnNames[static_cast<std::size_t>(c)]);
+        const Eigen::Index j = found - processed.columns.begin();
+        if (found != processed.columns.end() && samples.scales(c) == processed.scale &&
+            processed.values.col(j) == samples.q.col(c)) {
+            source.emplace_back(0, j);
+        } else {
+            source.emplace_back(1, static_cast<Eigen::Index>(others.size()));
+            others.push_back(c);
+        }
+    }
+    if (others.empty()) return joinColumns({&processed.trajectory}, source);
+    Eigen::MatrixXd q(samples.q.rows(), static_cast<Eigen::Index>(others.size()));
+    for (std::size_t k = 0; k < others.size(); ++k) q.col(static_cast<Eigen::Index>(k)) = samples.q.col(others[k]);
+    const CoordinateTrajectory rest = preprocessInHalves(samples.times, q, selectColumns(options, others));
+    return joinColumns({&processed.trajectory, &rest}, source);
+}
+
+// The options OpenSim's tools process a table with: the time range clamped to its rows'. Errors name `where`.
+CoordinatePreprocessingOptions makeOptions(const Eigen::VectorXd& times, double lowpassCutoffHz, double startTime,
+                                           double finalTime, const std::string& where, std::vector<std::string> names) {
+    CoordinatePreprocessingOptions options;
+    options.lowpassCutoffHz = lowpassCutoffHz;
+    const Eigen::Index rows = times.size();
+    options.startTime = rows ? std::max(startTime, times[0]) : startTime;
+    options.finalTime = rows ? std::min(finalTime, times[rows - 1]) : finalTime;
+    if (rows && options.startTime > options.finalTime)
+        throw Error((where.empty() ? "" : where + ": ") + "the time range [" + std::to_string(startTime) + ", " +
+                    std::to_string(finalTime) + "] s lies outside the motion's [" + std::to_string(times[0]) + ", " +
+                    std::to_string(times[rows - 1]) + "] s");
+    options.columnNames = std::move(names);
+    return options;
+}
+
+// Errors of a table's processing, at its labels.
+[[noreturn]] void rethrowAt(const std::string& where, const Error& e) {
+    if (where.empty()) throw e;
+    throw Error(where + " (the labels; rows counted from 0 below them): " + e.what());
 }
 
 }  // namespace
@@ -114,11 +191,11 @@ CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& 
     samples.times = Eigen::Map<const Eigen::VectorXd>(table.times.data(), rows);
     samples.q.resize(rows, n);
     samples.where = table.where;
+    samples.scales.resize(n);
     for (Eigen::Index c = 0; c < n; ++c) {
         const std::size_t column = static_cast<std::size_t>(columnOf[static_cast<std::size_t>(c)]);
-        const bool degrees = isInDegrees(model, table, static_cast<int>(c));
-        for (Eigen::Index r = 0; r < rows; ++r)
-            samples.q(r, c) = table.rows[static_cast<std::size_t>(r)][column] * (degrees ? M_PI / 180 : 1.0);
+        samples.scales(c) = isInDegrees(model, table, static_cast<int>(c)) ? kDegree : 1.0;
+        for (Eigen::Index r = 0; r < rows; ++r) samples.q(r, c) = table.rows[static_cast<std::size_t>(r)][column] * samples.scales(c);
     }
     makeQuaternionsContinuous(model, table.where, samples.q);
     return samples;
@@ -153,25 +230,42 @@ StorageTable completeCoordinateTable(const Model& model, const StorageTable& tab
     return complete;
 }
 
-CoordinateTrajectory preprocessCoordinateSamples(const Model& model, const CoordinateSamples& samples,
-                                                 double lowpassCutoffHz, double startTime, double finalTime) {
-    CoordinatePreprocessingOptions options;
-    options.lowpassCutoffHz = lowpassCutoffHz;
-    const Eigen::Index rows = samples.times.size();
-    options.startTime = rows ? std::max(startTime, samples.times[0]) : startTime;
-    options.finalTime = rows ? std::min(finalTime, samples.times[rows - 1]) : finalTime;
-    if (rows && options.startTime > options.finalTime)
-        throw Error((samples.where.empty() ? "" : samples.where + ": ") + "the time range [" +
-                    std::to_string(startTime) + ", " + std::to_string(finalTime) + "] s lies outside the motion's [" +
-                    std::to_string(samples.times[0]) + ", " + std::to_string(samples.times[rows - 1]) + "] s");
-    for (const Coordinate& c : model.getCoordinates()) options.columnNames.push_back(c.name);
+ProcessedMotionTable preprocessMotionTable(const StorageTable& table, double lowpassCutoffHz, double startTime,
+                                           double finalTime) {
+    ProcessedMotionTable processed;
+    processed.columns = table.columns;
+    processed.times = Eigen::Map<const Eigen::VectorXd>(table.times.data(), static_cast<Eigen::Index>(table.times.size()));
+    processed.scale = table.inDegrees ? kDegree : 1.0;
+    Eigen::MatrixXd& values = processed.values;
+    values.resize(processed.times.size(), static_cast<Eigen::Index>(table.columns.size()));
+    for (Eigen::Index r = 0; r < values.rows(); ++r)
+        for (Eigen::Index c = 0; c < values.cols(); ++c)
+            values(r, c) = table.rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] * processed.scale;
+    const CoordinatePreprocessingOptions options =
+        makeOptions(processed.times, lowpassCutoffHz, startTime, finalTime, table.where, table.columns);
     try {
-        CoordinateTrajectory trajectory = preprocessInHalves(samples.times, samples.q, options);
+        processed.trajectory = preprocessCoordinates(processed.times, processed.values, options);
+    } catch (const Error& e) {
+        rethrowAt(table.where, e);
+    }
+    return processed;
+}
+
+CoordinateTrajectory preprocessCoordinateSamples(const Model& model, const CoordinateSamples& samples,
+                                                 double lowpassCutoffHz, double startTime, double finalTime,
+                                                 const ProcessedMotionTable* processed) {
+    std::vector<std::string> names;
+    for (const Coordinate& c : model.getCoordinates()) names.push_back(c.name);
+    const CoordinatePreprocessingOptions options =
+        makeOptions(samples.times, lowpassCutoffHz, startTime, finalTime, samples.where, std::move(names));
+    try {
+        CoordinateTrajectory trajectory = processed && !hasQuaternionJoints(model)
+                                              ? preprocessWithProcessedTable(samples, options, *processed)
+                                              : preprocessInHalves(samples.times, samples.q, options);
         if (hasQuaternionJoints(model)) convertQuaternionRates(model, trajectory);
         return trajectory;
     } catch (const Error& e) {
-        if (samples.where.empty()) throw;
-        throw Error(samples.where + " (the labels; rows counted from 0 below them): " + e.what());
+        rethrowAt(samples.where, e);
     }
 }
 

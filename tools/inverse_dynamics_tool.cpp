@@ -40,15 +40,17 @@ std::vector<std::string> getGeneralizedForceNames(const Model& model) {
 }
 
 // `curves`, when given, were fitted to `loads` beforehand (the tool fits them beside the model's reading);
-// otherwise they are fitted here beside the coordinates' processing, which is independent of them.
+// otherwise they are fitted here beside the coordinates' processing, which is independent of them. So may
+// the coordinates' table have been processed (`processed`, the tool's too).
 StorageTable calcGeneralizedForceTable(const Model& model, const StorageTable& coordinates, const ExternalLoads* loads,
-                                       std::optional<ExternalLoadCurves> curves, const InverseDynamicsOptions& options) {
+                                       std::optional<ExternalLoadCurves> curves, const ProcessedMotionTable* processed,
+                                       const InverseDynamicsOptions& options) {
     std::optional<CoordinateTrajectory> trajectory;
     std::optional<MeasuredLoads> measured;
     auto processCoordinates = [&] {
         const CoordinateSamples samples = readCoordinateSamples(model, coordinates);
         trajectory = preprocessCoordinateSamples(model, samples, options.lowpassCutoffHz, options.startTime,
-                                                 options.finalTime);
+                                                 options.finalTime, processed);
     };
     auto resolveLoads = [&] {
         if (!loads) return;
@@ -107,17 +109,18 @@ StorageTable calcGeneralizedForceTable(const Model& model, const StorageTable& c
 
 StorageTable runInverseDynamics(const Model& model, const StorageTable& coordinates, const ExternalLoads* loads,
                                 const InverseDynamicsOptions& options) {
-    return calcGeneralizedForceTable(model, coordinates, loads, std::nullopt, options);
+    return calcGeneralizedForceTable(model, coordinates, loads, std::nullopt, nullptr, options);
 }
 
 std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std::string& outputDirectory,
                                    const std::function<void(const std::string&)>& notes,
                                    const std::function<void(int frame, int frames)>& onFrame) {
-    // The model is read beside the motion files and the loads' curves. Only the model's reading sends
-    // notes, so they come out in order.
+    // The model is read beside the motion files, the loads' curves and the coordinates' processing. Only
+    // the model's reading sends notes, so they come out in order.
     std::optional<Model> loadedModel;
     std::optional<ExternalLoads> loads;
     std::optional<ExternalLoadCurves> curves;
+    std::optional<ProcessedMotionTable> processedCoordinates;
     StorageTable coordinateFile;
     runSideBySide([&] { loadedModel = loadModel(setup.modelFile, notes); },
                   [&] {
@@ -129,6 +132,14 @@ std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std:
                           if (loads) curves.emplace(*loads);
                       } catch (const Error&) {
                           curves.reset();
+                      }
+                      // So is a failed processing of the coordinates; a column the model does not read may
+                      // fail it, which the model's own columns then do not.
+                      try {
+                          processedCoordinates = preprocessMotionTable(coordinateFile, setup.lowpassCutoffFrequencyForCoordinates,
+                                                                       setup.startTime, setup.endTime);
+                      } catch (const Error&) {
+                          processedCoordinates.reset();
                       }
                   });
     const Model& model = *loadedModel;
@@ -158,7 +169,8 @@ std::string runInverseDynamicsTool(const InverseDynamicsSetup& setup, const std:
     options.onFrame = onFrame;
     const StorageTable coordinates = completeCoordinateTable(model, coordinateFile, notes);
     const StorageTable result =
-        calcGeneralizedForceTable(model, coordinates, loads ? &*loads : nullptr, std::move(curves), options);
+        calcGeneralizedForceTable(model, coordinates, loads ? &*loads : nullptr, std::move(curves),
+                                  processedCoordinates ? &*processedCoordinates : nullptr, options);
     const std::filesystem::path directory = outputDirectory.empty() ? setup.resultsDirectory : outputDirectory;
     std::filesystem::create_directories(directory);
     const std::string path = (directory / setup.outputGenForceFile).string();

@@ -11,6 +11,7 @@
 
 #include "sinew/core/forward_simulation.hpp"
 #include "sinew/io/model_file.hpp"
+#include "sinew/io/model_loading.hpp"
 #include "sinew/io/storage_file.hpp"
 #include "sinew/io/tool_setup.hpp"
 #include "sinew/tools/coordinate_table.hpp"
@@ -177,6 +178,46 @@ TEST(InverseDynamics, BadValuesInBothHalvesReportTheFirstBadRow) {
     EXPECT_TRUE(test::throwsErrorAt([&] { preprocessCoordinateSamples(model, samples, 6, 0, 1); }, "coordinate preprocessing: row 2",
                                     {getCoordinateNames(model)[static_cast<std::size_t>(last)], "not finite"},
                                     "bad values at (row 9, column 0) and (row 2, the last column)"));
+}
+
+// The ID tool processes the coordinates' table while it reads the model (preprocessMotionTable), taking
+// from it what the model's samples need: bit for bit what processing the samples gives. gait2354's table in
+// degrees, with a column the model does not read and a coordinate left out: the translations and the
+// missing coordinate are processed again, the angles taken. A bad value in the unread column fails the
+// early processing, which the samples then do not need.
+TEST(InverseDynamics, ATableProcessedBeforeTheModelGivesTheSameTrajectory) {
+    const std::filesystem::path example = kOpenSimData / "gait2354";
+    if (!std::filesystem::exists(example))
+        GTEST_SKIP() << "../shared/data/opensim/gait2354 is absent (it ships only with sinew's developer data)";
+    const Model model = loadModel((example / "subject01_simbody.osim").string(), {});
+    StorageTable file = readStorageFile((example / "subject01_walk1_ik.mot").string());
+    ASSERT_TRUE(file.inDegrees);
+    const std::size_t left = static_cast<std::size_t>(
+        std::find(file.columns.begin(), file.columns.end(), "mtp_angle_l") - file.columns.begin());
+    ASSERT_LT(left, file.columns.size());
+    file.columns[left] = "marker_x";  // mtp_angle_l is missing; marker_x is read by no coordinate
+    const CoordinateSamples samples = readCoordinateSamples(model, completeCoordinateTable(model, file, {}));
+    const CoordinateTrajectory reference = preprocessCoordinateSamples(model, samples, 6, 0.4, 1.6);
+    const ProcessedMotionTable processed = preprocessMotionTable(file, 6, 0.4, 1.6);
+    const CoordinateTrajectory ours = preprocessCoordinateSamples(model, samples, 6, 0.4, 1.6, &processed);
+    EXPECT_TRUE(ours.times == reference.times);
+    EXPECT_TRUE(ours.q == reference.q);
+    EXPECT_TRUE(ours.qdot == reference.qdot);
+    EXPECT_TRUE(ours.qddot == reference.qddot);
+    EXPECT_TRUE(ours.processedTimes == reference.processedTimes);
+    EXPECT_TRUE(ours.processedValues == reference.processedValues);
+    EXPECT_EQ(ours.firstRow, reference.firstRow);
+    ASSERT_EQ(ours.splines.size(), reference.splines.size());
+    for (std::size_t c = 0; c < ours.splines.size(); ++c)
+        for (const double t : {0.4137, 0.9, 1.5912})
+            EXPECT_EQ(ours.splines[c].calcDerivative(t, 2), reference.splines[c].calcDerivative(t, 2)) << c;
+
+    for (std::vector<double>& row : file.rows) row[left] = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_TRUE(test::throwsErrorAt([&] { preprocessMotionTable(file, 6, 0.4, 1.6); }, file.where,
+                                    {"'marker_x'", "not finite"}, "a NaN column"));
+    const CoordinateTrajectory withoutIt =
+        preprocessCoordinateSamples(model, readCoordinateSamples(model, completeCoordinateTable(model, file, {})), 6, 0.4, 1.6);
+    EXPECT_TRUE(withoutIt.q == reference.q);
 }
 
 TEST(InverseDynamicsTool, Gait2354MatchesOpenSim) {

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "sinew/signal/coordinate_preprocessing.hpp"
 #include "sinew/core/model.hpp"
@@ -16,6 +17,9 @@ namespace sinew {
 struct CoordinateSamples {
     Eigen::VectorXd times;  // (rows) s
     Eigen::MatrixXd q;      // (rows x nq) rad or m, in the model's q order
+    // (nq) the factor each column was converted by from the table's units: pi/180 for the rotational
+    // coordinates of an inDegrees table, else 1. Empty where unknown.
+    Eigen::VectorXd scales;
     std::string where;      // "file:line" of the table's labels, for messages; empty for none
 };
 
@@ -33,6 +37,21 @@ CoordinateSamples readCoordinateSamples(const Model& model, const StorageTable& 
 StorageTable completeCoordinateTable(const Model& model, const StorageTable& table,
                                      const std::function<void(const std::string&)>& notes);
 
+// A motion table's columns processed before the model is known, as preprocessCoordinateSamples would process
+// them (the ID tool does this while it reads the model): every column, each converted first by `scale`, the
+// factor of a rotational coordinate (pi/180 in an inDegrees table, else 1). Each column's arithmetic is its
+// own, so preprocessCoordinateSamples can take from it, bit for bit, the columns of the coordinates that
+// have that factor, and process only the others (translations, coordinates missing from the table).
+struct ProcessedMotionTable {
+    std::vector<std::string> columns;  // the table's
+    Eigen::VectorXd times;             // the table's rows
+    double scale = 1;
+    Eigen::MatrixXd values;            // the table's values times `scale`
+    CoordinateTrajectory trajectory;   // one column per table column
+};
+ProcessedMotionTable preprocessMotionTable(const StorageTable& table, double lowpassCutoffHz, double startTime,
+                                           double finalTime);
+
 // q, q̇, q̈ from the samples as OpenSim's tools derive them (coordinate_preprocessing.hpp): cutoff in Hz
 // (negative: no filtering), the time range in s; errors name the table's file, the row and the model's
 // coordinates. The frames never reach beyond the samples' own times: the padding filtering adds is not a
@@ -40,7 +59,10 @@ StorageTable completeCoordinateTable(const Model& model, const StorageTable& tab
 // quaternion's four components are splined like any coordinate, then the result's q holds the unit
 // quaternions and its qdot and qddot the speeds u and u̇ (nu columns, calcSpeedsFromCoordinateRates);
 // without, q̇ = u.
+// `processed`, when given, is the samples' table processed beforehand (preprocessMotionTable, with the same
+// cutoff and time range); it is used where it holds what the samples need, and the result is the same.
 CoordinateTrajectory preprocessCoordinateSamples(const Model& model, const CoordinateSamples& samples,
-                                                 double lowpassCutoffHz, double startTime, double finalTime);
+                                                 double lowpassCutoffHz, double startTime, double finalTime,
+                                                 const ProcessedMotionTable* processed = nullptr);
 
 }  // namespace sinew
