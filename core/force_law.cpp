@@ -1,5 +1,6 @@
 #include "sinew/core/force_law.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "sinew/core/error.hpp"
@@ -20,15 +21,28 @@ double ForceLawParameters::getScalarOr(const std::string& name, double fallback)
 const std::vector<double>& ForceLawParameters::getVector(const std::string& name) const {
     auto it = values_.find(name);
     if (it == values_.end()) throw Error("missing parameter '" + name + "'");
-    read_.insert(name);
+    if (std::find(read_.begin(), read_.end(), &it->first) == read_.end()) read_.push_back(&it->first);
     return it->second;
 }
 
 std::vector<std::string> ForceLawParameters::findUnread() const {
     std::vector<std::string> unread;
     for (const auto& [name, value] : values_)
-        if (!read_.count(name)) unread.push_back(name);
+        if (std::find(read_.begin(), read_.end(), &name) == read_.end()) unread.push_back(name);
     return unread;
+}
+
+ForceLawParameters& ForceLawParameters::operator=(const ForceLawParameters& other) {
+    if (this != &other) {
+        values_ = other.values_;
+        copyReads(other);
+    }
+    return *this;
+}
+
+void ForceLawParameters::copyReads(const ForceLawParameters& other) {
+    read_.clear();
+    for (const std::string* name : other.read_) read_.push_back(&values_.find(*name)->first);
 }
 
 double ForceLaw::calcTension(const WireState& state) const {

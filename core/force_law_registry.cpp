@@ -54,18 +54,18 @@ std::shared_ptr<const ForceLaw> ForceLawRegistry::create(const std::string& type
         }
         factory = it->second;
     }
-    // A fresh copy tracks what this factory reads, whatever earlier reads of `parameters` marked.
-    const ForceLawParameters tracked(parameters.getAll());
+    // What this factory reads, whatever earlier reads of `parameters` marked.
+    parameters.clearReads();
     std::shared_ptr<const ForceLaw> law;
     try {
-        law = factory(tracked);
+        law = factory(parameters);
     } catch (const Error& e) {
         // A misspelt required parameter fails as "missing"; listing what was given shows the typo.
         std::string given;
         for (const auto& entry : parameters.getAll()) given += (given.empty() ? "" : ", ") + entry.first;
         throw Error("force law '" + type + "': " + e.what() + " (given: " + (given.empty() ? "none" : given) + ")");
     }
-    const std::vector<std::string> unread = tracked.findUnread();
+    const std::vector<std::string> unread = parameters.findUnread();
     if (!unread.empty()) {
         std::string names;
         for (const auto& name : unread) names += (names.empty() ? "'" : ", '") + name + "'";

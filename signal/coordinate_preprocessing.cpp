@@ -38,9 +38,17 @@ Eigen::Index lastRowAtOrBefore(const Eigen::VectorXd& times, double t) {
     return std::max<Eigen::Index>(after - 1, 0);
 }
 
+// The interpolation on sites x of `degree`: `reused` where it is that, else made.
+SplineInterpolation makeInterpolation(int degree, const Eigen::VectorXd& x, const std::optional<SplineInterpolation>* reused) {
+    if (reused && *reused && (*reused)->getDegree() == degree && (*reused)->getX().size() == x.size() && (*reused)->getX() == x)
+        return **reused;
+    return SplineInterpolation(degree, x);
+}
+
 // Pads, resamples when the step is uneven, and low-passes `values` over `times` in place, as
 // Storage::pad(size / 2) then Storage::lowpassIIR(cutoff).
-void padAndFilter(Eigen::VectorXd& times, Eigen::MatrixXd& values, double cutoffHz, CoordinateTrajectory& out) {
+void padAndFilter(Eigen::VectorXd& times, Eigen::MatrixXd& values, double cutoffHz, const CoordinateSplineSetUps* reuse,
+                  CoordinateSplineSetUps& setUps, CoordinateTrajectory& out) {
     const int pad = static_cast<int>(times.size() / 2);
     Eigen::MatrixXd padded(times.size() + 2 * pad, values.cols());
     for (Eigen::Index j = 0; j < values.cols(); ++j) padded.col(j) = padSignal(values.col(j), pad);
@@ -54,7 +62,8 @@ void padAndFilter(Eigen::VectorXd& times, Eigen::MatrixXd& values, double cutoff
     // Uneven steps (even the rounding of a printed table) trigger resampling at the smallest step.
     if (span / static_cast<double>(rows - 1) - smallestStep > std::numeric_limits<double>::epsilon()) {
         if (span / smallestStep > kMaxResampledRows) out.samplePeriod = span / kMaxResampledRows;
-        const std::vector<SmoothingSpline> splines = SmoothingSpline::interpolateColumns(kResampleDegree, times, values);
+        setUps.resampling = makeInterpolation(kResampleDegree, times, reuse ? &reuse->resampling : nullptr);
+        const std::vector<SmoothingSpline> splines = setUps.resampling->interpolate(values);
         // The grid accumulates the step (x += dt) exactly as GCVSplineSet::constructStorage does, so its
         // times carry the same rounding as OpenSim's output.
         std::vector<double> grid;
@@ -126,7 +135,10 @@ CoordinateTrajectory preprocessCoordinates(const Eigen::VectorXd& times, const E
     CoordinateTrajectory out;
     out.processedTimes = times;
     out.processedValues = values;
-    if (options.lowpassCutoffHz > 0) padAndFilter(out.processedTimes, out.processedValues, options.lowpassCutoffHz, out);
+    auto setUps = std::make_shared<CoordinateSplineSetUps>();
+    const CoordinateSplineSetUps* reuse = options.setUps.get();
+    if (options.lowpassCutoffHz > 0)
+        padAndFilter(out.processedTimes, out.processedValues, options.lowpassCutoffHz, reuse, *setUps, out);
     if (options.columnScales.size() != 0) out.processedValues *= options.columnScales.asDiagonal();
 
     const Eigen::VectorXd& t = out.processedTimes;
@@ -135,7 +147,9 @@ CoordinateTrajectory preprocessCoordinates(const Eigen::VectorXd& times, const E
                     std::to_string(options.finalTime) + "] s lies outside the processed table's [" +
                     std::to_string(t(0)) + ", " + std::to_string(t(t.size() - 1)) + "] s");
     // GCVSplineSet(5, storage) fits each column with error variance 0: interpolating splines.
-    out.splines = SmoothingSpline::interpolateColumns(options.splineDegree, t, out.processedValues);
+    setUps->final = makeInterpolation(options.splineDegree, t, reuse ? &reuse->final : nullptr);
+    out.splines = setUps->final->interpolate(out.processedValues);
+    out.setUps = std::move(setUps);
 
     // InverseDynamicsTool::run: the rows from findIndex(max(first, start)) to findIndex(min(last, final)).
     const Eigen::Index first = lastRowAtOrBefore(t, std::max(t(0), options.startTime));

@@ -310,6 +310,8 @@ public:
         return splines;
     }
 
+    const Eigen::VectorXd& getX() const { return x_; }
+
     // p that weighs the roughness like the data term: trace(H) / trace(P).
     double naturalScale() const { return H_.band.row(0).sum() / P_.band.row(0).sum(); }
 
@@ -595,8 +597,20 @@ std::vector<SmoothingSpline> SmoothingSpline::interpolateColumns(int degree, con
     if (values.rows() != x.size())
         throw Error("smoothing spline: " + std::to_string(values.rows()) + " rows of values for " +
                     std::to_string(x.size()) + " sites");
-    return NaturalSplineFitter(degree, x, Eigen::VectorXd(), /*roughness=*/false).interpolate(values);
+    return SplineInterpolation(degree, x).interpolate(values);
 }
+
+SplineInterpolation::SplineInterpolation(int degree, const Eigen::Ref<const Eigen::VectorXd>& x)
+    : degree_(degree), fitter_(std::make_shared<const NaturalSplineFitter>(degree, x, Eigen::VectorXd(), /*roughness=*/false)) {}
+
+std::vector<SmoothingSpline> SplineInterpolation::interpolate(const Eigen::Ref<const Eigen::MatrixXd>& values) const {
+    if (values.rows() != getX().size())
+        throw Error("smoothing spline: " + std::to_string(values.rows()) + " rows of values for " +
+                    std::to_string(getX().size()) + " sites");
+    return fitter_->interpolate(values);
+}
+
+const Eigen::VectorXd& SplineInterpolation::getX() const { return fitter_->getX(); }
 
 namespace {
 

@@ -81,6 +81,7 @@ CoordinateTrajectory joinColumns(const std::vector<const CoordinateTrajectory*>&
     whole.samplePeriod = first.samplePeriod;
     whole.usedCutoffHz = first.usedCutoffHz;
     whole.resampled = first.resampled;
+    whole.setUps = first.setUps;
     const Eigen::Index columns = static_cast<Eigen::Index>(source.size());
     whole.q.resize(first.q.rows(), columns);
     whole.qdot.resize(first.qdot.rows(), columns);
@@ -150,8 +151,10 @@ CoordinateTrajectory preprocessWithProcessedTable(const CoordinateSamples& sampl
     if (others.empty()) return joinColumns({&processed.trajectory}, source);
     Eigen::MatrixXd q(samples.q.rows(), static_cast<Eigen::Index>(others.size()));
     for (std::size_t k = 0; k < others.size(); ++k) q.col(static_cast<Eigen::Index>(k)) = samples.q.col(others[k]);
-    const CoordinateTrajectory rest = preprocessInHalves(samples.times, q, selectColumns(options, others));
-    return joinColumns({&processed.trajectory, &rest}, source);
+    CoordinatePreprocessingOptions rest = selectColumns(options, others);
+    rest.setUps = processed.trajectory.setUps;  // the same times: the splines' set-ups are the same
+    const CoordinateTrajectory processedRest = preprocessInHalves(samples.times, q, rest);
+    return joinColumns({&processed.trajectory, &processedRest}, source);
 }
 
 // The options OpenSim's tools process a table with: the time range clamped to its rows'. Errors name `where`.

@@ -4,7 +4,6 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -23,6 +22,11 @@ class ForceLawParameters {
 public:
     ForceLawParameters() = default;
     explicit ForceLawParameters(std::map<std::string, std::vector<double>> values) : values_(std::move(values)) {}
+    // Copies take the values and what was read of them.
+    ForceLawParameters(const ForceLawParameters& other) : values_(other.values_) { copyReads(other); }
+    ForceLawParameters& operator=(const ForceLawParameters& other);
+    ForceLawParameters(ForceLawParameters&&) = default;
+    ForceLawParameters& operator=(ForceLawParameters&&) = default;
 
     void set(const std::string& name, std::vector<double> value) { values_[name] = std::move(value); }
     bool has(const std::string& name) const { return values_.count(name) != 0; }
@@ -30,13 +34,19 @@ public:
     double getScalar(const std::string& name) const;
     double getScalarOr(const std::string& name, double fallback) const;
     const std::vector<double>& getVector(const std::string& name) const;
-    // Names that were provided but never read by get*.
+    // Names that were provided but never read by get* since the last clearReads (ForceLawRegistry::create
+    // clears them before a factory reads). Reading is tracked in the object, so one object is read by one
+    // thread at a time.
     std::vector<std::string> findUnread() const;
+    void clearReads() const { read_.clear(); }
     const std::map<std::string, std::vector<double>>& getAll() const { return values_; }
 
 private:
+    void copyReads(const ForceLawParameters& other);
+
     std::map<std::string, std::vector<double>> values_;
-    mutable std::set<std::string> read_;
+    // The keys read: a map's keys stay where they are, and a list of a few pointers costs no allocation per read.
+    mutable std::vector<const std::string*> read_;
 };
 
 // The extension point. Implement doCalcTension (and doCalcPotentialEnergy for conservative laws); callers

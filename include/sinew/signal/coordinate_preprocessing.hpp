@@ -6,12 +6,21 @@
 // rows inside the time range. Step by step, with sources, in docs/signal-processing.md.
 #include <Eigen/Core>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "sinew/signal/smoothing_spline.hpp"
 
 namespace sinew {
+
+// The splines' set-ups a table's processing made, for another table with the same times to reuse (the
+// set-ups depend on the times alone).
+struct CoordinateSplineSetUps {
+    std::optional<SplineInterpolation> resampling;  // on the padded rows, where uneven rows were resampled
+    std::optional<SplineInterpolation> final;       // on the processed rows
+};
 
 struct CoordinatePreprocessingOptions {
     // Hz; negative: no padding, resampling or filtering (OpenSim's default -1). Zero is refused.
@@ -26,6 +35,9 @@ struct CoordinatePreprocessingOptions {
     Eigen::VectorXd columnScales;
     // Only for error messages (which otherwise say "column 3"); empty or one per column.
     std::vector<std::string> columnNames;
+    // An earlier table's (CoordinateTrajectory::setUps): each set-up is used where its sites and degree are
+    // this table's, else made anew. The result is the same either way.
+    std::shared_ptr<const CoordinateSplineSetUps> setUps;
 };
 
 struct CoordinateTrajectory {
@@ -42,6 +54,7 @@ struct CoordinateTrajectory {
     double samplePeriod = 0;     // s; the filter's step (0 without filtering)
     double usedCutoffHz = -1;    // the cutoff applied (0.49 of the sampling rate if the request exceeded Nyquist)
     bool resampled = false;      // whether uneven times were resampled to samplePeriod
+    std::shared_ptr<const CoordinateSplineSetUps> setUps;  // the splines' set-ups this processing used
 };
 
 // `times` (nRows) strictly increasing; `values` (nRows x nColumns), one column per coordinate as in the

@@ -9,6 +9,26 @@
 
 namespace sinew {
 
+class NaturalSplineFitter;
+class SmoothingSpline;
+
+// The interpolating splines' set-up on one set of sites: the basis and its factorization, the costly part
+// of SmoothingSpline::interpolateColumns, kept to fit more tables sampled at the same sites (each column's
+// arithmetic is the same either way). Immutable; copies share the set-up.
+class SplineInterpolation {
+public:
+    // Throws sinew::Error as interpolateColumns does for the degree and the sites.
+    SplineInterpolation(int degree, const Eigen::Ref<const Eigen::VectorXd>& x);
+    // interpolateColumns(degree, x, values).
+    std::vector<SmoothingSpline> interpolate(const Eigen::Ref<const Eigen::MatrixXd>& values) const;
+    int getDegree() const { return degree_; }
+    const Eigen::VectorXd& getX() const;
+
+private:
+    int degree_;
+    std::shared_ptr<const NaturalSplineFitter> fitter_;
+};
+
 // The natural spline s of degree 2m - 1 (m = 1..4: linear, cubic, quintic, heptic) with knots at the data
 // sites x_0 < ... < x_{n-1} that minimizes
 //     sum_i w_i (y_i - s(x_i))^2 + p * integral (d^m s / dt^m)^2 dt
