@@ -209,7 +209,10 @@ StorageTable completeCoordinateTable(const Model& model, const StorageTable& tab
     const std::vector<Coordinate>& coordinates = model.getCoordinates();
     StorageTable complete = table;
     complete.columns.clear();
-    for (std::vector<double>& row : complete.rows) row.clear();
+    for (std::vector<double>& row : complete.rows) {
+        row.clear();
+        row.reserve(coordinates.size());  // filled a value at a time below
+    }
     const std::string source = table.where.empty() ? "the motion" : table.where;
     for (std::size_t c = 0; c < coordinates.size(); ++c) {
         const Coordinate& coordinate = coordinates[c];
