@@ -129,10 +129,13 @@ CoordinateTrajectory preprocessInHalves(const Eigen::VectorXd& times, const Eige
 
 // The columns `processed` holds as the samples have them (the same numbers: the table's times and values,
 // converted by the same factor) are taken from it; the others are processed here.
-CoordinateTrajectory preprocessWithProcessedTable(const CoordinateSamples& samples, const CoordinatePreprocessingOptions& options,
+CoordinateTrajectory preprocessWithProcessedTable(const CoordinateSamples& samples, double lowpassCutoffHz, double startTime,
+                                                  double finalTime, const CoordinatePreprocessingOptions& options,
                                                   const ProcessedMotionTable& processed) {
     const Eigen::Index columns = samples.q.cols();
-    if (samples.scales.size() != columns || processed.times.size() != samples.times.size() ||
+    const bool sameProcessing = processed.lowpassCutoffHz == lowpassCutoffHz && processed.startTime == startTime &&
+                                processed.finalTime == finalTime;
+    if (!sameProcessing || samples.scales.size() != columns || processed.times.size() != samples.times.size() ||
         processed.times != samples.times)
         return preprocessInHalves(samples.times, samples.q, options);
     std::vector<std::pair<std::size_t, Eigen::Index>> source;
@@ -241,6 +244,9 @@ ProcessedMotionTable preprocessMotionTable(const StorageTable& table, double low
     ProcessedMotionTable processed;
     processed.columns = table.columns;
     processed.times = Eigen::Map<const Eigen::VectorXd>(table.times.data(), static_cast<Eigen::Index>(table.times.size()));
+    processed.lowpassCutoffHz = lowpassCutoffHz;
+    processed.startTime = startTime;
+    processed.finalTime = finalTime;
     processed.scale = table.inDegrees ? kDegree : 1.0;
     Eigen::MatrixXd& values = processed.values;
     values.resize(processed.times.size(), static_cast<Eigen::Index>(table.columns.size()));
@@ -266,7 +272,8 @@ CoordinateTrajectory preprocessCoordinateSamples(const Model& model, const Coord
         makeOptions(samples.times, lowpassCutoffHz, startTime, finalTime, samples.where, std::move(names));
     try {
         CoordinateTrajectory trajectory = processed && !hasQuaternionJoints(model)
-                                              ? preprocessWithProcessedTable(samples, options, *processed)
+                                              ? preprocessWithProcessedTable(samples, lowpassCutoffHz, startTime, finalTime,
+                                                                             options, *processed)
                                               : preprocessInHalves(samples.times, samples.q, options);
         if (hasQuaternionJoints(model)) convertQuaternionRates(model, trajectory);
         return trajectory;

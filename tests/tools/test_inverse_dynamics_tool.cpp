@@ -218,6 +218,9 @@ TEST(InverseDynamics, ATableProcessedBeforeTheModelGivesTheSameTrajectory) {
     };
     EXPECT_EQ(&splineOf("pelvis_tx").getX(), &splineOf("pelvis_tilt").getX());
     EXPECT_EQ(&splineOf("mtp_angle_l").getX(), &splineOf("pelvis_tilt").getX());
+    // Processed with another cutoff, the table is not taken.
+    EXPECT_TRUE(preprocessCoordinateSamples(model, samples, 4, 0.4, 1.6, &processed).q ==
+                preprocessCoordinateSamples(model, samples, 4, 0.4, 1.6).q);
 
     for (std::vector<double>& row : file.rows) row[left] = std::numeric_limits<double>::quiet_NaN();
     EXPECT_TRUE(test::throwsErrorAt([&] { preprocessMotionTable(file, 6, 0.4, 1.6); }, file.where,

@@ -2,7 +2,8 @@
 // Output files written as a set, so that a failed or interrupted run never leaves a file that looks whole.
 // Each file is written to a temporary beside it ("<name>.incomplete-<pid>", same folder, so the rename
 // stays on one file system), its stream state checked through flush and close (a full disk or /dev/full
-// fails here), and only when every file of the set is complete are they all renamed into place. Files of
+// fails here), and only when every file of the set is complete are they all renamed into place (an old
+// file exchanged with its replacement, then removed: a reader never finds the path missing). Files of
 // the set that this run does not produce (retire()) are removed at the same point, so no previous run's
 // file is left beside the new ones. A set destroyed uncommitted (an exception, a failed run) removes its
 // temporaries and touches nothing else: the folder keeps the previous run's files as they were.

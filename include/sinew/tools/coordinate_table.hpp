@@ -45,6 +45,7 @@ StorageTable completeCoordinateTable(const Model& model, const StorageTable& tab
 struct ProcessedMotionTable {
     std::vector<std::string> columns;  // the table's
     Eigen::VectorXd times;             // the table's rows
+    double lowpassCutoffHz = -1, startTime = 0, finalTime = 0;  // as asked
     double scale = 1;
     Eigen::MatrixXd values;            // the table's values times `scale`
     CoordinateTrajectory trajectory;   // one column per table column
@@ -59,8 +60,9 @@ ProcessedMotionTable preprocessMotionTable(const StorageTable& table, double low
 // quaternion's four components are splined like any coordinate, then the result's q holds the unit
 // quaternions and its qdot and qddot the speeds u and u̇ (nu columns, calcSpeedsFromCoordinateRates);
 // without, q̇ = u.
-// `processed`, when given, is the samples' table processed beforehand (preprocessMotionTable, with the same
-// cutoff and time range); it is used where it holds what the samples need, and the result is the same.
+// `processed`, when given, is the samples' table processed beforehand (preprocessMotionTable): it is used
+// where it holds what the samples need (the same times, cutoff and time range; a column of the same numbers),
+// and the result is the same.
 CoordinateTrajectory preprocessCoordinateSamples(const Model& model, const CoordinateSamples& samples,
                                                  double lowpassCutoffHz, double startTime, double finalTime,
                                                  const ProcessedMotionTable* processed = nullptr);
