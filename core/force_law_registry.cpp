@@ -54,18 +54,19 @@ std::shared_ptr<const ForceLaw> ForceLawRegistry::create(const std::string& type
         }
         factory = it->second;
     }
-    // What this factory reads, whatever earlier reads of `parameters` marked.
-    parameters.clearReads();
+    // A fresh copy tracks what this factory reads, whatever earlier reads of `parameters` marked; and
+    // `parameters` is only read, so laws may be created from it on several threads at once.
+    const ForceLawParameters tracked(parameters.getAll());
     std::shared_ptr<const ForceLaw> law;
     try {
-        law = factory(parameters);
+        law = factory(tracked);
     } catch (const Error& e) {
         // A misspelt required parameter fails as "missing"; listing what was given shows the typo.
         std::string given;
         for (const auto& entry : parameters.getAll()) given += (given.empty() ? "" : ", ") + entry.first;
         throw Error("force law '" + type + "': " + e.what() + " (given: " + (given.empty() ? "none" : given) + ")");
     }
-    const std::vector<std::string> unread = parameters.findUnread();
+    const std::vector<std::string> unread = tracked.findUnread();
     if (!unread.empty()) {
         std::string names;
         for (const auto& name : unread) names += (names.empty() ? "'" : ", '") + name + "'";

@@ -34,11 +34,9 @@ public:
     double getScalar(const std::string& name) const;
     double getScalarOr(const std::string& name, double fallback) const;
     const std::vector<double>& getVector(const std::string& name) const;
-    // Names that were provided but never read by get* since the last clearReads (ForceLawRegistry::create
-    // clears them before a factory reads). Reading is tracked in the object, so one object is read by one
-    // thread at a time.
+    // Names that were provided but never read by get*. Reading is tracked in the object, so one object is
+    // read by one thread at a time (ForceLawRegistry::create gives each factory a copy of its own).
     std::vector<std::string> findUnread() const;
-    void clearReads() const { read_.clear(); }
     const std::map<std::string, std::vector<double>>& getAll() const { return values_; }
 
 private:
