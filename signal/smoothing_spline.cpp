@@ -592,11 +592,18 @@ SmoothingSpline SmoothingSpline::fitFromErrorVariance(int degree, const Eigen::R
     return fitter.makeSpline(minimize(fitter, meanSquaredError, true));
 }
 
+namespace {
+
+void checkOneRowPerSite(Eigen::Index rows, Eigen::Index sites) {
+    if (rows != sites)
+        throw Error("smoothing spline: " + std::to_string(rows) + " rows of values for " + std::to_string(sites) + " sites");
+}
+
+}  // namespace
+
 std::vector<SmoothingSpline> SmoothingSpline::interpolateColumns(int degree, const Eigen::Ref<const Eigen::VectorXd>& x,
                                                                 const Eigen::Ref<const Eigen::MatrixXd>& values) {
-    if (values.rows() != x.size())
-        throw Error("smoothing spline: " + std::to_string(values.rows()) + " rows of values for " +
-                    std::to_string(x.size()) + " sites");
+    checkOneRowPerSite(values.rows(), x.size());  // a table of the wrong height is reported before bad sites
     return SplineInterpolation(degree, x).interpolate(values);
 }
 
@@ -604,9 +611,7 @@ SplineInterpolation::SplineInterpolation(int degree, const Eigen::Ref<const Eige
     : degree_(degree), fitter_(std::make_shared<const NaturalSplineFitter>(degree, x, Eigen::VectorXd(), /*roughness=*/false)) {}
 
 std::vector<SmoothingSpline> SplineInterpolation::interpolate(const Eigen::Ref<const Eigen::MatrixXd>& values) const {
-    if (values.rows() != getX().size())
-        throw Error("smoothing spline: " + std::to_string(values.rows()) + " rows of values for " +
-                    std::to_string(getX().size()) + " sites");
+    checkOneRowPerSite(values.rows(), getX().size());
     return fitter_->interpolate(values);
 }
 

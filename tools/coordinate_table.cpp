@@ -176,9 +176,10 @@ CoordinatePreprocessingOptions makeOptions(const Eigen::VectorXd& times, double 
     return options;
 }
 
-// Errors of a table's processing, at its labels.
+// Errors of a table's processing, at its labels. Called in the handler: without a place, the error itself
+// goes on.
 [[noreturn]] void rethrowAt(const std::string& where, const Error& e) {
-    if (where.empty()) throw e;
+    if (where.empty()) throw;
     throw Error(where + " (the labels; rows counted from 0 below them): " + e.what());
 }
 
