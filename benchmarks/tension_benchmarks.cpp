@@ -16,7 +16,8 @@
 // consecutive frames are always neighbours. Besides Google Benchmark's mean, each run reports the median,
 // 99th percentile and largest time of a frame in wall-clock time (median_ms, p99_ms, max_ms) and in the
 // thread's CPU time (cpu_median_ms, ...), the model's sizes, the mean solver iterations, active wires,
-// Z = ½|tau - A x|² (for the frame: over the distributed DOFs), and the frames not optimal.
+// Z = ½|tau - A x|² (for the frame: over the distributed DOFs), and the frames not optimal; the warm LP
+// also the share of frames its own warm path solved without Clp.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -250,9 +251,13 @@ void lp(benchmark::State& state, bool warm) {
     const Sequence& s = getWholeBody();
     sinew::LpSolver solver;
     sinew::DistributionResult result;
+    int solves = 0;
     timeFrames(
-        state, warm, [&](std::size_t k) -> const sinew::DistributionResult& { return solver.solve(s.frames[k], result), result; },
+        state, warm,
+        [&](std::size_t k) -> const sinew::DistributionResult& { return ++solves, solver.solve(s.frames[k], result), result; },
         [&] { solver.reset(); });
+    // The share of frames the warm dual simplex solved without Clp (docs/tensions.md, "The warm path").
+    if (warm) state.counters["warm_path_share"] = solver.getWarmFrames() / static_cast<double>(solves);
 }
 
 void qp(benchmark::State& state, bool warm) {

@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libsimbody-dev libeigen3-dev libyaml-cpp-dev libgtest-dev libbenchmark-dev
-          libpugixml-dev libtinyxml2-dev coinor-libclp-dev coinor-libipopt-dev libmujoco-dev python3 python3-matplotlib
+          libpugixml-dev libtinyxml2-dev coinor-libclp-dev libsuitesparse-dev coinor-libipopt-dev libmujoco-dev python3 python3-matplotlib
           libcairo2-dev nlohmann-json3-dev libjs-three chromium chromium-driver
           python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest  # the Python module (docs/python.md)
           python3-yaml python3-distributed  # sinew_batch's manifests and Dask scale-out (docs/batch.md)

@@ -105,14 +105,14 @@ void validateDistributionProblem(const DistributionProblem& problem) {
     checkFinite("target", problem.target);
     checkFinite("tolerance", problem.tolerance);
     for (Eigen::Index j = 0; j < numBounded; ++j) {
-        const std::string at = "[" + std::to_string(j) + "]";
+        const auto at = [j] { return "[" + std::to_string(j) + "]"; };
         const double lower = problem.lower[j], upper = problem.upper[j];
         if (std::isnan(lower) || std::isnan(upper) || lower > upper || (std::isfinite(lower) && !isBounded(lower)) ||
             (std::isfinite(upper) && !isBounded(upper)))
-            throw Error("distribution problem: bounds" + at + " are [" + std::to_string(problem.lower[j]) + ", " +
+            throw Error("distribution problem: bounds" + at() + " are [" + std::to_string(problem.lower[j]) + ", " +
                         std::to_string(problem.upper[j]) + "], expected lower <= upper, each infinite or within +-1e20");
         if (!(problem.weight[j] > 0))
-            throw Error("distribution problem: weight" + at + " is " + std::to_string(problem.weight[j]) +
+            throw Error("distribution problem: weight" + at() + " is " + std::to_string(problem.weight[j]) +
                         ", expected > 0");
     }
     for (Eigen::Index i = 0; i < rows; ++i)

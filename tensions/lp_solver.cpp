@@ -1,5 +1,7 @@
 #include "sinew/tensions/lp_solver.hpp"
 
+#include "sinew/tensions/warm_dual_simplex.hpp"
+
 #include <ClpSimplex.hpp>
 #include <CoinPackedMatrix.hpp>
 #include <algorithm>
@@ -39,6 +41,17 @@ struct LpArrays {
 
 void clampToBounds(const DistributionProblem& problem, Eigen::VectorXd& x) {
     for (int j = 0; j < problem.getNumBounded(); ++j) x[j] = std::min(std::max(x[j], problem.lower[j]), problem.upper[j]);
+}
+
+// Whether clamping x into its bounds would move a row by more than 1e-9 of tau's size: an answer kept to a
+// solver's tolerance in some scaled space can end that far beyond a bound (see finishWithinBounds).
+bool movesRowsWhenClamped(const DistributionProblem& problem, const Eigen::Ref<const Eigen::VectorXd>& answer) {
+    constexpr double kClampShift = 1e-9;
+    Eigen::VectorXd clampMove = answer;
+    clampToBounds(problem, clampMove);
+    clampMove -= answer;
+    const double size = std::max(1.0, problem.target.cwiseAbs().maxCoeff());
+    return !clampMove.isZero() && (problem.A * clampMove).cwiseAbs().maxCoeff() > kClampShift * size;
 }
 
 // The cold start: Clp's all-slack basis with every free column (loop force) basic in place of the slack of
@@ -172,29 +185,52 @@ bool solvePhaseOneLp(const DistributionProblem& problem, Eigen::VectorXd& x, Eig
 
 struct LpSolver::Backend {
     ClpSimplex simplex;
-    bool loaded = false;
     LpArrays arrays;
-    std::vector<unsigned char> basis;  // the previous frame's, while the problem is reloaded
+    std::vector<unsigned char> basis;  // the last frame's final basis, Clp's status codes (empty: cold)
     std::vector<char> rowTaken;        // startFromSlacksAndFreeColumns's workspace
     std::vector<unsigned char> phaseOneBasis;  // the last phase 1's optimal basis
     bool lastInfeasible = false;               // the last frame's status
+    WarmDualSimplex warm;
+    std::vector<unsigned char> warmBasis;  // the warm path's copy of `basis`, kept only when it proves optimal
+    int warmFrames = 0;
 
     Backend() { simplex.setLogLevel(0); }
 
-    // Loads A, bounds and costs, and gives the new problem the previous frame's basis (Clp's status arrays)
-    // when the sizes are unchanged, for the dual simplex to start from; else the cold start.
+    bool hasBasisFor(const DistributionProblem& problem) const {
+        return basis.size() == static_cast<std::size_t>(problem.getNumRows() + problem.getNumVariables());
+    }
+
+    // Loads A, bounds and costs (arrays filled for `problem`), and gives Clp the last frame's basis when it
+    // fits; else the cold start.
     void load(const DistributionProblem& problem) {
-        arrays.fill(problem);
         const Eigen::SparseMatrix<double>& A = problem.A;
-        const int rows = static_cast<int>(A.rows()), columns = static_cast<int>(A.cols());
-        const bool keepBasis = loaded && simplex.numberRows() == rows && simplex.numberColumns() == columns;
-        if (keepBasis) basis.assign(simplex.statusArray(), simplex.statusArray() + rows + columns);
-        simplex.loadProblem(columns, rows, A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(),
-                            arrays.columnLower.data(), arrays.columnUpper.data(), arrays.cost.data(),
+        simplex.loadProblem(static_cast<int>(A.cols()), static_cast<int>(A.rows()), A.outerIndexPtr(), A.innerIndexPtr(),
+                            A.valuePtr(), arrays.columnLower.data(), arrays.columnUpper.data(), arrays.cost.data(),
                             arrays.rowLower.data(), arrays.rowUpper.data());
-        if (keepBasis) simplex.copyinStatus(basis.data());
+        if (hasBasisFor(problem)) simplex.copyinStatus(basis.data());
         else startFromSlacksAndFreeColumns(problem, simplex, rowTaken);
-        loaded = true;
+    }
+
+    void keepClpBasis() {
+        basis.assign(simplex.statusArray(), simplex.statusArray() + simplex.numberRows() + simplex.numberColumns());
+    }
+
+    // The warm path (docs/tensions.md): the last frame's basis re-solved by WarmDualSimplex, kept when it is
+    // proved optimal and its answer lies within the bounds as Clp's finish requires; false leaves the frame
+    // to Clp, from that same basis.
+    bool solveWarm(const DistributionProblem& problem, DistributionResult& result) {
+        if (lastInfeasible || !hasBasisFor(problem)) return false;
+        const LinearProgram lp{&problem.A, arrays.columnLower.data(), arrays.columnUpper.data(), arrays.cost.data(),
+                               arrays.rowLower.data(), arrays.rowUpper.data()};
+        warmBasis = basis;
+        if (warm.solve(lp, warmBasis) != WarmDualOutcome::Optimal) return false;
+        result.x = warm.getColumnValues();
+        if (movesRowsWhenClamped(problem, result.x)) return false;
+        basis.swap(warmBasis);
+        result.multipliers = warm.getRowDuals();
+        result.iterations = warm.getPivots();
+        ++warmFrames;
+        return true;
     }
 
     // Dual simplex from the current basis; on trouble (iteration limit, numerical errors) once more from
@@ -211,7 +247,7 @@ struct LpSolver::Backend {
         if (simplex.status() <= 1) return finishWithinBounds(problem);
         simplex = ClpSimplex();
         simplex.setLogLevel(0);
-        loaded = false;
+        basis.clear();
         load(problem);
         simplex.setMaximumIterations(pivotCap);
         simplex.dual();
@@ -226,14 +262,10 @@ struct LpSolver::Backend {
     // tolerance is in newtons (3 to 170 primal pivots on the kick's three such frames); should that fail,
     // the scaled answer stands. Returns Clp's status.
     int finishWithinBounds(const DistributionProblem& problem) {
-        constexpr double kClampShift = 1e-9;
         if (simplex.status() != 0) return simplex.status();
-        const Eigen::Map<const Eigen::VectorXd> answer(simplex.primalColumnSolution(), problem.getNumVariables());
-        Eigen::VectorXd clampMove = answer;
-        clampToBounds(problem, clampMove);
-        clampMove -= answer;
-        const double size = std::max(1.0, problem.target.cwiseAbs().maxCoeff());
-        if (clampMove.isZero() || (problem.A * clampMove).cwiseAbs().maxCoeff() <= kClampShift * size) return 0;
+        if (!movesRowsWhenClamped(problem, Eigen::Map<const Eigen::VectorXd>(simplex.primalColumnSolution(),
+                                                                             problem.getNumVariables())))
+            return 0;
         ClpSimplex unscaled(simplex);
         unscaled.scaling(0);
         unscaled.primal(1);  // a values pass: from the answer in hand
@@ -255,6 +287,7 @@ void LpSolver::solveWithReserves(const DistributionProblem& problem, const Eigen
     // Phase 1 meets the band's edges: a hair of slack so that roundoff leaves the shifted LP feasible.
     const double scale = std::max(1.0, problem.target.cwiseAbs().maxCoeff());
     withReserves_.tolerance.array() += 1e-9 * scale;
+    backend_->arrays.fill(withReserves_);
     backend_->load(withReserves_);
     if (backend_->run(withReserves_) != 0) return;  // phase 1's x stands
     result.x = Eigen::Map<const Eigen::VectorXd>(backend_->simplex.primalColumnSolution(), problem.getNumVariables());
@@ -266,15 +299,34 @@ LpSolver::~LpSolver() = default;
 
 void LpSolver::reset() { backend_ = std::make_unique<Backend>(); }
 
+int LpSolver::getWarmFrames() const { return backend_->warmFrames; }
+
 void LpSolver::solve(const DistributionProblem& problem, DistributionResult& result) {
     validateDistributionProblem(problem);
-    const int rows = problem.getNumRows(), columns = problem.getNumVariables();
-    backend_->load(problem);
+    const int rows = problem.getNumRows();
+    backend_->arrays.fill(problem);
     result.iterations = 0;
     result.usedIpopt = false;
     result.reserve.setZero(rows);
     result.multipliers.setZero(rows);
     result.status = DistributionStatus::Failed;
+    if (backend_->solveWarm(problem, result)) {
+        result.status = DistributionStatus::Optimal;
+    } else {
+        solveWithClp(problem, result);
+        backend_->keepClpBasis();
+    }
+    if (!result.x.allFinite()) result.x.setZero();
+    if (!result.multipliers.allFinite()) result.multipliers.setZero();
+    clampToBounds(problem, result.x);
+    calcResultSummary(problem, result);
+    result.objective = problem.cost.dot(result.x.head(problem.getNumBounded()));
+    result.kkt = calcLpKktResiduals(problem, result.x, result.multipliers);
+}
+
+void LpSolver::solveWithClp(const DistributionProblem& problem, DistributionResult& result) {
+    const int rows = problem.getNumRows(), columns = problem.getNumVariables();
+    backend_->load(problem);
     const double scale = std::max(1.0, problem.target.cwiseAbs().maxCoeff());
     const auto needsReserves = [&](const Eigen::VectorXd& reserve) {
         return reserve.cwiseAbs().maxCoeff() > 1e-6 * scale;  // Clp's feasibility tolerance is 1e-7
@@ -319,12 +371,6 @@ void LpSolver::solve(const DistributionProblem& problem, DistributionResult& res
         result.x = Eigen::Map<const Eigen::VectorXd>(backend_->simplex.primalColumnSolution(), columns);
         result.multipliers = Eigen::Map<const Eigen::VectorXd>(backend_->simplex.dualRowSolution(), rows);
     }
-    if (!result.x.allFinite()) result.x.setZero();
-    if (!result.multipliers.allFinite()) result.multipliers.setZero();
-    clampToBounds(problem, result.x);
-    calcResultSummary(problem, result);
-    result.objective = problem.cost.dot(result.x.head(problem.getNumBounded()));
-    result.kkt = calcLpKktResiduals(problem, result.x, result.multipliers);
 }
 
 }  // namespace sinew

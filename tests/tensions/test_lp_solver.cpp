@@ -1,5 +1,6 @@
 // The Clp LP against Ipopt on random problems with the degeneracies of real models, warm starts against
-// cold solves, the phase-1 reserve of infeasible frames, and Z(QP) <= Z(LP).
+// cold solves, the phase-1 reserve of infeasible frames, and Z(QP) <= Z(LP); the warm path's dual simplex
+// against Clp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include "support/random_distribution_problems.hpp"
 #include "sinew/tensions/active_set_solver.hpp"
 #include "sinew/tensions/lp_solver.hpp"
+#include "sinew/tensions/warm_dual_simplex.hpp"
 
 namespace sinew {
 namespace {
@@ -99,6 +101,7 @@ TEST(LpSolver, WarmStartsGiveTheColdAnswer) {
         if (frame > 0) warmIterations += warmResult.iterations, coldIterations += coldResult.iterations;
     }
     EXPECT_LT(warmIterations, coldIterations);
+    EXPECT_GE(warm.getWarmFrames(), 15);  // the rest went to Clp; each answer is checked above either way
 }
 
 // A run of infeasible frames, as a motion has them: after the first, phase 1 goes first and starts from the
@@ -174,6 +177,144 @@ TEST(LpSolver, InfeasibleFramesTakeTheLeastCostAmongTheLeastReserves) {
         ++checked;
     }
     EXPECT_GT(checked, 3);
+}
+
+// The LP of a distribution problem in WarmDualSimplex's terms (the arrays kept alive by the struct).
+struct WarmLp {
+    std::vector<double> columnLower, columnUpper, cost, rowLower, rowUpper;
+    LinearProgram lp;
+
+    explicit WarmLp(const DistributionProblem& p) {
+        const int rows = p.getNumRows(), columns = p.getNumVariables();
+        columnLower.assign(static_cast<std::size_t>(columns), -1e300);
+        columnUpper.assign(static_cast<std::size_t>(columns), 1e300);
+        cost.assign(static_cast<std::size_t>(columns), 0.0);
+        for (int j = 0; j < p.getNumBounded(); ++j)
+            columnLower[static_cast<std::size_t>(j)] = p.lower[j], columnUpper[static_cast<std::size_t>(j)] = p.upper[j],
+                                                    cost[static_cast<std::size_t>(j)] = p.cost[j];
+        for (int i = 0; i < rows; ++i) {
+            const double band = p.isEquality[static_cast<std::size_t>(i)] ? 0 : p.tolerance[i];
+            rowLower.push_back(p.target[i] - band);
+            rowUpper.push_back(p.target[i] + band);
+        }
+        lp = {&p.A, columnLower.data(), columnUpper.data(), cost.data(), rowLower.data(), rowUpper.data()};
+    }
+};
+
+// Every row's activity basic, the tensions at their lower bound, the free columns nonbasic and free: dual
+// feasible whenever the costs are >= 0, so the dual simplex can start there.
+std::vector<unsigned char> makeSlackBasis(const DistributionProblem& p) {
+    std::vector<unsigned char> status(static_cast<std::size_t>(p.getNumVariables() + p.getNumRows()),
+                                      static_cast<unsigned char>(SimplexStatus::Basic));
+    for (int j = 0; j < p.getNumVariables(); ++j)
+        status[static_cast<std::size_t>(j)] =
+            static_cast<unsigned char>(j < p.getNumBounded() ? SimplexStatus::AtLower : SimplexStatus::Free);
+    return status;
+}
+
+// WarmDualSimplex's answer against Clp's (a cold LpSolver): the optimal cost to 1e-9, the KKT conditions
+// from its own x and duals, x within the bounds.
+void expectClpsOptimum(const DistributionProblem& p, const WarmDualSimplex& simplex, const std::string& name) {
+    LpSolver clp;
+    DistributionResult reference;
+    clp.solve(p, reference);
+    ASSERT_EQ(reference.status, DistributionStatus::Optimal) << name;
+    const Eigen::VectorXd& x = simplex.getColumnValues();
+    EXPECT_NEAR(p.cost.dot(x.head(p.getNumBounded())), reference.objective, 1e-9 * std::abs(reference.objective)) << name;
+    EXPECT_LE(calcLpKktResiduals(p, x, simplex.getRowDuals()).getMax(), 1e-9) << name;
+    for (int j = 0; j < p.getNumBounded(); ++j) {
+        EXPECT_GE(x[j], p.lower[j] - 1e-9) << name;
+        EXPECT_LE(x[j], p.upper[j] + 1e-9) << name;
+    }
+}
+
+TEST(WarmDualSimplex, FromTheSlackBasisReachesClpsOptimumOnRandomDegenerateProblems) {
+    // Duplicate and zero wires, unreachable DOFs, free columns and equality rows (makeProblemSweep).
+    WarmDualSimplexOptions options;
+    options.maxPivots = 1000;
+    options.refactorEvery = 7;  // several fresh factorisations inside a solve
+    for (const test::RandomProblemOptions& o : test::makeProblemSweep(0.1, 0.9, 0)) {
+        const DistributionProblem p = test::makeRandomProblem(o);
+        const WarmLp lp(p);
+        std::vector<unsigned char> status = makeSlackBasis(p);
+        WarmDualSimplex simplex;
+        ASSERT_EQ(simplex.solve(lp.lp, status, options), WarmDualOutcome::Optimal) << test::describe(o);
+        EXPECT_GT(simplex.getPivots(), 0);
+        expectClpsOptimum(p, simplex, test::describe(o));
+    }
+}
+
+TEST(WarmDualSimplex, ReSolvesAMotionFromEachFramesOptimalBasis) {
+    const DistributionProblem base = makeMotionBase(2);
+    WarmDualSimplex simplex;
+    std::vector<unsigned char> status = makeSlackBasis(base);
+    WarmDualSimplexOptions fromSlacks;
+    fromSlacks.maxPivots = 1000;
+    int warmPivots = 0, slackPivots = 0;
+    for (int frame = 0; frame < 20; ++frame) {
+        const DistributionProblem p = makeMotionFrame(base, frame, 1.0);
+        const WarmLp lp(p);
+        const std::string name = "frame " + std::to_string(frame);
+        ASSERT_EQ(simplex.solve(lp.lp, status, fromSlacks), WarmDualOutcome::Optimal) << name;
+        expectClpsOptimum(p, simplex, name);
+        if (frame == 0) continue;
+        warmPivots += simplex.getPivots();
+        WarmDualSimplex cold;
+        std::vector<unsigned char> slacks = makeSlackBasis(p);
+        ASSERT_EQ(cold.solve(lp.lp, slacks, fromSlacks), WarmDualOutcome::Optimal) << name;
+        slackPivots += cold.getPivots();
+    }
+    EXPECT_LT(warmPivots, slackPivots / 4);
+}
+
+TEST(WarmDualSimplex, LeavesWhatItCannotProveToClpWithTheBasisUnchanged) {
+    const DistributionProblem base = makeMotionBase(0);
+    const DistributionProblem feasible = makeMotionFrame(base, 0, 1.0);
+    WarmDualSimplex simplex;
+    // Beyond what the bounded tensions reach: no entering variable, the dual is unbounded.
+    const DistributionProblem infeasible = makeMotionFrame(base, 0, 3.0);
+    const WarmLp infeasibleLp(infeasible);
+    std::vector<unsigned char> status = makeSlackBasis(infeasible);
+    const std::vector<unsigned char> slacks = status;
+    WarmDualSimplexOptions options;
+    options.maxPivots = 1000;
+    EXPECT_EQ(simplex.solve(infeasibleLp.lp, status, options), WarmDualOutcome::DualUnbounded);
+    EXPECT_EQ(status, slacks);
+
+    const WarmLp lp(feasible);
+    options.maxPivots = 2;
+    EXPECT_EQ(simplex.solve(lp.lp, status, options), WarmDualOutcome::TooManyPivots);
+    EXPECT_EQ(status, slacks);
+
+    // No basis of this problem: a status too few, a basic variable too few, a superbasic variable, a
+    // variable at an infinite bound.
+    std::vector<unsigned char> shortStatus(slacks.begin(), slacks.end() - 1);
+    EXPECT_EQ(simplex.solve(lp.lp, shortStatus), WarmDualOutcome::NoBasis);
+    std::vector<unsigned char> missingBasic = slacks;
+    missingBasic.back() = static_cast<unsigned char>(SimplexStatus::AtLower);
+    EXPECT_EQ(simplex.solve(lp.lp, missingBasic), WarmDualOutcome::NoBasis);
+    std::vector<unsigned char> superBasic = slacks;
+    superBasic[0] = static_cast<unsigned char>(SimplexStatus::SuperBasic);
+    EXPECT_EQ(simplex.solve(lp.lp, superBasic), WarmDualOutcome::NoBasis);
+    std::vector<unsigned char> freeAtLower = slacks;
+    freeAtLower[static_cast<std::size_t>(feasible.getNumBounded())] = static_cast<unsigned char>(SimplexStatus::AtLower);
+    EXPECT_EQ(simplex.solve(lp.lp, freeAtLower), WarmDualOutcome::NoBasis);
+
+    // A basis that is dual infeasible on an unboxed variable: a free column at its "value" 0 with a
+    // reduced cost that is not zero (the costs made to price it).
+    const int freeColumn = feasible.getNumBounded();
+    int wire = -1, row = -1;
+    for (int j = 0; j < freeColumn && wire < 0; ++j)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(feasible.A, j); it; ++it)
+            if (it.value() != 0 && feasible.A.coeff(it.row(), freeColumn) != 0) {
+                wire = j, row = static_cast<int>(it.row());
+                break;
+            }
+    ASSERT_GE(wire, 0);
+    std::vector<unsigned char> wireBasic = slacks;  // the wire basic in its row's place
+    wireBasic[static_cast<std::size_t>(feasible.getNumVariables() + row)] = static_cast<unsigned char>(SimplexStatus::AtLower);
+    wireBasic[static_cast<std::size_t>(wire)] = static_cast<unsigned char>(SimplexStatus::Basic);
+    EXPECT_EQ(simplex.solve(lp.lp, wireBasic), WarmDualOutcome::NotDualFeasible);
 }
 
 }  // namespace

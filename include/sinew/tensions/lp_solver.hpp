@@ -4,8 +4,9 @@
 //     min cost^T x   s.t.  tau - tolerance <= A x <= tau + tolerance (equality rows: A x = tau),
 //                          lower <= x <= upper on the bounded variables, free variables unbounded.
 //
-// One solver per sequence of frames: it keeps its ClpSimplex and, while the sparsity pattern of A stays the
-// same, replaces the matrix values, bounds and costs and re-solves from the previous frame's basis. An
+// One solver per sequence of frames: it keeps the previous frame's basis and, while the sizes of A stay the
+// same, re-solves from it, first by its own warm dual simplex (warm_dual_simplex.hpp), which answers only an
+// optimum it has proved, and otherwise by Clp from the same basis. An
 // infeasible frame is followed by a phase-1 LP (min sum |reserve| with a free reserve on every row), whose
 // answer says which rows (DOFs) lack muscle.
 #include <memory>
@@ -28,8 +29,12 @@ public:
     void solve(const DistributionProblem& problem, DistributionResult& result) override;
     // The next solve starts cold: a new ClpSimplex and the all-slack basis with the free columns basic.
     void reset() override;
+    // Frames since construction or reset that the warm path (WarmDualSimplex) solved without Clp.
+    int getWarmFrames() const;
 
 private:
+    // Clp's dual simplex from the last frame's basis, phase 1 and the least-cost LP with reserves.
+    void solveWithClp(const DistributionProblem& problem, DistributionResult& result);
     void solveWithReserves(const DistributionProblem& problem, const Eigen::VectorXd& reserve, DistributionResult& result);
 
     struct Backend;

@@ -1,0 +1,432 @@
+#include "sinew/tensions/warm_dual_simplex.hpp"
+
+#include <klu.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sinew {
+namespace {
+
+constexpr double kInfinite = 1e30;
+
+// Below this reciprocal condition estimate the basis is left to Clp, which repairs singular bases.
+constexpr double kSmallestReciprocalCondition = 1e-13;
+
+}  // namespace
+
+const char* toString(WarmDualOutcome outcome) {
+    switch (outcome) {
+        case WarmDualOutcome::Optimal: return "optimal";
+        case WarmDualOutcome::NoBasis: return "no basis";
+        case WarmDualOutcome::NotDualFeasible: return "not dual feasible";
+        case WarmDualOutcome::DualUnbounded: return "dual unbounded";
+        case WarmDualOutcome::Singular: return "singular basis";
+        case WarmDualOutcome::TooManyPivots: return "too many pivots";
+    }
+    return "unknown";
+}
+
+// KLU's LU factors of the basis matrix B (its columns: A's for basic columns, -e_i for row i's activity) and
+// the product-form updates since: B_k = B_0 E_1 ... E_k, E_i the identity with column p_i replaced by the
+// entering column in the basis of its pivot.
+class BasisFactor {
+public:
+    klu_common common{};
+    klu_symbolic* symbolic = nullptr;
+    klu_numeric* numeric = nullptr;
+    int size = 0;
+    std::vector<int> starts, rowIndices;
+    std::vector<double> values;
+    std::vector<int> etaRows;
+    std::vector<Eigen::VectorXd> etaColumns;  // kept allocated across frames
+    int etas = 0;
+
+    BasisFactor() { klu_defaults(&common); }
+    ~BasisFactor() { release(); }
+    BasisFactor(const BasisFactor&) = delete;
+    BasisFactor& operator=(const BasisFactor&) = delete;
+
+    void release() {
+        if (numeric) klu_free_numeric(&numeric, &common);
+        if (symbolic) klu_free_symbolic(&symbolic, &common);
+    }
+
+    // Factorises the basis whose k-th column is variable heads[k]; false when singular or ill-conditioned.
+    bool factorize(const Eigen::SparseMatrix<double>& A, const std::vector<int>& heads) {
+        release();
+        etas = 0;
+        const int columns = static_cast<int>(A.cols());
+        size = static_cast<int>(heads.size());
+        starts.assign(1, 0);
+        rowIndices.clear();
+        values.clear();
+        for (const int j : heads) {
+            if (j < columns) {
+                for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) {
+                    rowIndices.push_back(static_cast<int>(it.row()));
+                    values.push_back(it.value());
+                }
+            } else {
+                rowIndices.push_back(j - columns);
+                values.push_back(-1.0);
+            }
+            starts.push_back(static_cast<int>(rowIndices.size()));
+        }
+        symbolic = klu_analyze(size, starts.data(), rowIndices.data(), &common);
+        if (!symbolic) return false;
+        numeric = klu_factor(starts.data(), rowIndices.data(), values.data(), symbolic, &common);
+        if (!numeric || common.status != KLU_OK) return false;
+        klu_rcond(symbolic, numeric, &common);
+        return common.rcond >= kSmallestReciprocalCondition;
+    }
+
+    // v <- B^-1 v
+    void ftran(Eigen::VectorXd& v) {
+        klu_solve(symbolic, numeric, size, 1, v.data(), &common);
+        for (int k = 0; k < etas; ++k) {
+            const Eigen::VectorXd& a = etaColumns[static_cast<std::size_t>(k)];
+            const int p = etaRows[static_cast<std::size_t>(k)];
+            const double vp = v[p] / a[p];
+            v.noalias() -= vp * a;
+            v[p] = vp;
+        }
+    }
+
+    // v <- B^-T v
+    void btran(Eigen::VectorXd& v) {
+        for (int k = etas - 1; k >= 0; --k) {
+            const Eigen::VectorXd& a = etaColumns[static_cast<std::size_t>(k)];
+            const int p = etaRows[static_cast<std::size_t>(k)];
+            v[p] = (v[p] - (a.dot(v) - a[p] * v[p])) / a[p];
+        }
+        klu_tsolve(symbolic, numeric, size, 1, v.data(), &common);
+    }
+
+    void addEta(int row, const Eigen::VectorXd& column) {
+        if (static_cast<int>(etaColumns.size()) <= etas) {
+            etaColumns.emplace_back();
+            etaRows.push_back(0);
+        }
+        etaColumns[static_cast<std::size_t>(etas)] = column;
+        etaRows[static_cast<std::size_t>(etas)] = row;
+        ++etas;
+    }
+};
+
+namespace {
+
+// One solve's working state: the variables are A's columns, then the rows' activities (column -e_i).
+class DualSimplexRun {
+public:
+    DualSimplexRun(const LinearProgram& lp, const WarmDualSimplexOptions& options)
+        : A_(*lp.A), lp_(lp), options_(options), rows_(static_cast<int>(A_.rows())), columns_(static_cast<int>(A_.cols())) {}
+
+    // Reads Clp's status codes; false when they are no basis of this problem.
+    bool readBasis(const std::vector<unsigned char>& status) {
+        const int total = rows_ + columns_;
+        if (static_cast<int>(status.size()) != total) return false;
+        state_.resize(static_cast<std::size_t>(total));
+        value_.setZero(total);
+        position_.assign(static_cast<std::size_t>(total), -1);
+        heads_.clear();
+        for (int j = 0; j < total; ++j) {
+            const auto code = static_cast<SimplexStatus>(status[static_cast<std::size_t>(j)] & 7);
+            const double low = lower(j), up = upper(j);
+            if (code == SimplexStatus::Basic) {
+                position_[static_cast<std::size_t>(j)] = static_cast<int>(heads_.size());
+                heads_.push_back(j);
+            } else if (code == SimplexStatus::SuperBasic) {
+                return false;
+            } else if (low == up) {
+                value_[j] = low;
+            } else if (code == SimplexStatus::AtUpper) {
+                if (up >= kInfinite) return false;
+                value_[j] = up;
+            } else if (code == SimplexStatus::Free) {
+                if (low > -kInfinite || up < kInfinite) return false;
+            } else {
+                if (low <= -kInfinite) return false;  // at lower (or fixed, which Clp gives only to low == up)
+                value_[j] = low;
+            }
+            state_[static_cast<std::size_t>(j)] = code == SimplexStatus::Basic ? SimplexStatus::Basic
+                                                  : low == up                  ? SimplexStatus::Fixed
+                                                  : code == SimplexStatus::Free ? SimplexStatus::Free
+                                                  : code == SimplexStatus::AtUpper ? SimplexStatus::AtUpper
+                                                                                    : SimplexStatus::AtLower;
+        }
+        return static_cast<int>(heads_.size()) == rows_;
+    }
+
+    WarmDualOutcome run(BasisFactor& factor, int& pivots) {
+        bool dualFeasible = true;
+        if (!refresh(factor, dualFeasible)) return WarmDualOutcome::Singular;
+        if (!dualFeasible) return WarmDualOutcome::NotDualFeasible;
+        bool verified = false;  // the values and reduced costs were computed afresh since the last pivot
+        for (;;) {
+            const int leaving = chooseLeavingRow();
+            if (leaving < 0) {
+                if (factor.etas == 0 || verified) return WarmDualOutcome::Optimal;
+                verified = true;
+                // Proved only on values and reduced costs computed afresh, not on the updated ones.
+                if (!refresh(factor, dualFeasible, false)) return WarmDualOutcome::Singular;
+                if (!dualFeasible) return WarmDualOutcome::NotDualFeasible;
+                continue;
+            }
+            if (pivots >= options_.maxPivots) return WarmDualOutcome::TooManyPivots;
+            verified = false;
+            const WarmDualOutcome outcome = pivot(factor, leaving);
+            if (outcome != WarmDualOutcome::Optimal) return outcome;
+            ++pivots;
+            if (factor.etas >= options_.refactorEvery) {
+                if (!refresh(factor, dualFeasible)) return WarmDualOutcome::Singular;
+                if (!dualFeasible) return WarmDualOutcome::NotDualFeasible;
+            }
+        }
+    }
+
+    void writeBasis(std::vector<unsigned char>& status) const {
+        for (std::size_t j = 0; j < state_.size(); ++j) status[j] = static_cast<unsigned char>(state_[j]);
+    }
+
+    void readSolution(Eigen::VectorXd& columnValues, Eigen::VectorXd& rowDuals) const {
+        columnValues.resize(columns_);
+        for (int j = 0; j < columns_; ++j) {
+            const int k = position_[static_cast<std::size_t>(j)];
+            columnValues[j] = k >= 0 ? basicValues_[k] : value_[j];
+        }
+        rowDuals = duals_;
+    }
+
+private:
+    double lower(int j) const { return j < columns_ ? lp_.columnLower[j] : lp_.rowLower[j - columns_]; }
+    double upper(int j) const { return j < columns_ ? lp_.columnUpper[j] : lp_.rowUpper[j - columns_]; }
+    double cost(int j) const { return j < columns_ ? lp_.cost[j] : 0.0; }
+
+    // alpha_j = column j of [A -I] times v
+    double dotColumn(int j, const Eigen::VectorXd& v) const {
+        if (j >= columns_) return -v[j - columns_];
+        // Two sums: one chain of dependent additions was the pivot's longest latency.
+        const int* row = A_.innerIndexPtr();
+        const double* value = A_.valuePtr();
+        int k = A_.outerIndexPtr()[j];
+        const int end = A_.outerIndexPtr()[j + 1];
+        double even = 0, odd = 0;
+        for (; k + 1 < end; k += 2) {
+            even += value[k] * v[row[k]];
+            odd += value[k + 1] * v[row[k + 1]];
+        }
+        if (k < end) even += value[k] * v[row[k]];
+        return even + odd;
+    }
+
+    // A fresh factorisation, the basic values from the nonbasic ones and the reduced costs from the costs;
+    // then dual feasibility restored by moving each boxed nonbasic variable whose reduced cost points the
+    // wrong way to its other bound (the frame's change of A turns some: a wire at its cap that no longer
+    // pays, a row's band edge). False when singular or when an unboxed variable is dual infeasible.
+    bool refresh(BasisFactor& factor, bool& dualFeasible, bool refactor = true) {
+        if (refactor && !factor.factorize(A_, heads_)) return false;
+        duals_.resize(rows_);
+        for (int k = 0; k < rows_; ++k) duals_[k] = cost(heads_[static_cast<std::size_t>(k)]);
+        factor.btran(duals_);
+        reducedCosts_.setZero(rows_ + columns_);
+        for (int j = 0; j < rows_ + columns_; ++j)
+            if (position_[static_cast<std::size_t>(j)] < 0) reducedCosts_[j] = cost(j) - dotColumn(j, duals_);
+        dualFeasible = flipToDualFeasibility();
+        computeBasicValues(factor);
+        return basicValues_.allFinite() && duals_.allFinite();
+    }
+
+    void computeBasicValues(BasisFactor& factor) {
+        basicValues_.setZero(rows_);
+        for (int j = 0; j < rows_ + columns_; ++j) {
+            const double v = value_[j];
+            if (position_[static_cast<std::size_t>(j)] >= 0 || v == 0) continue;
+            if (j >= columns_) {
+                basicValues_[j - columns_] += v;
+            } else {
+                for (Eigen::SparseMatrix<double>::InnerIterator it(A_, j); it; ++it) basicValues_[it.row()] -= it.value() * v;
+            }
+        }
+        factor.ftran(basicValues_);
+    }
+
+    bool flipToDualFeasibility() {
+        const double tolerance = options_.dualTolerance;
+        for (int j = 0; j < rows_ + columns_; ++j) {
+            const double d = reducedCosts_[j];
+            SimplexStatus& s = state_[static_cast<std::size_t>(j)];
+            const bool wrongAtLower = s == SimplexStatus::AtLower && d < -tolerance;
+            const bool wrongAtUpper = s == SimplexStatus::AtUpper && d > tolerance;
+            if (s == SimplexStatus::Free && std::abs(d) > tolerance) return false;
+            if (!wrongAtLower && !wrongAtUpper) continue;
+            if (lower(j) <= -kInfinite || upper(j) >= kInfinite) return false;
+            s = wrongAtLower ? SimplexStatus::AtUpper : SimplexStatus::AtLower;
+            value_[j] = wrongAtLower ? upper(j) : lower(j);
+        }
+        return true;
+    }
+
+    // The basic variable furthest beyond a bound (Dantzig's rule: the warm frames need a few pivots, where
+    // better pricing does not pay its upkeep), or -1 when every one is within the tolerance.
+    int chooseLeavingRow() const {
+        int leaving = -1;
+        double largest = options_.primalTolerance;
+        for (int k = 0; k < rows_; ++k) {
+            const int j = heads_[static_cast<std::size_t>(k)];
+            const double v = basicValues_[k];
+            const double beyond = std::max(lower(j) - v, v - upper(j));
+            if (beyond > largest) largest = beyond, leaving = k;
+        }
+        return leaving;
+    }
+
+    // One dual simplex pivot on basis row p (Harris' two-pass ratio test); Optimal means "pivoted".
+    WarmDualOutcome pivot(BasisFactor& factor, int p) {
+        const int leavingVariable = heads_[static_cast<std::size_t>(p)];
+        const bool toUpper = basicValues_[p] > upper(leavingVariable);
+        const double direction = toUpper ? 1.0 : -1.0;
+        const double bound = toUpper ? upper(leavingVariable) : lower(leavingVariable);
+
+        row_.setZero(rows_);
+        row_[p] = 1.0;
+        factor.btran(row_);
+        alpha_.setZero(rows_ + columns_);
+        double largestAlpha = 0;
+        for (int j = 0; j < rows_ + columns_; ++j) {
+            if (state_[static_cast<std::size_t>(j)] == SimplexStatus::Basic) continue;
+            alpha_[j] = dotColumn(j, row_);
+            largestAlpha = std::max(largestAlpha, std::abs(alpha_[j]));
+        }
+        const double pivotTolerance = 1e-9 * std::max(1.0, largestAlpha);
+        const double dualTolerance = options_.dualTolerance;
+        // The reduced cost of nonbasic j moves as d_j - t * direction * alpha_j, t >= 0: it reaches zero at
+        // its breakpoint t = d_j / (direction * alpha_j) if the sign is the one that makes it wrong there.
+        candidates_.clear();
+        for (int j = 0; j < rows_ + columns_; ++j) {
+            const SimplexStatus s = state_[static_cast<std::size_t>(j)];
+            if (s == SimplexStatus::Basic || s == SimplexStatus::Fixed) continue;
+            const double a = direction * alpha_[j], d = reducedCosts_[j];
+            const bool fromLower = (s == SimplexStatus::AtLower || s == SimplexStatus::Free) && a > pivotTolerance;
+            const bool fromUpper = (s == SimplexStatus::AtUpper || s == SimplexStatus::Free) && a < -pivotTolerance;
+            if (!fromLower && !fromUpper) continue;
+            candidates_.push_back({j, std::max(0.0, d / a), (std::abs(d) + dualTolerance) / std::abs(a)});
+        }
+        // Bound flipping (the long-step ratio test): passing a boxed variable's breakpoint moves it to its
+        // other bound, which takes |alpha_j| (u_j - l_j) off the leaving row's infeasibility; the step goes on
+        // while some is left. The rows' narrow bands make most breakpoints such flips. The breakpoints are
+        // taken in order from a heap: a few are passed of the hundreds there may be.
+        const auto later = [](const Candidate& x, const Candidate& y) { return x.ratio > y.ratio; };
+        std::make_heap(candidates_.begin(), candidates_.end(), later);
+        double infeasibility = std::abs(basicValues_[p] - bound);
+        flips_.clear();
+        std::size_t first = candidates_.size();  // candidates_[first, end) are the breakpoints not passed
+        while (first > 0) {
+            const int j = candidates_.front().variable;
+            const double range = upper(j) - lower(j);
+            const double drop = std::abs(alpha_[j]) * range;
+            if (!(range < kInfinite) || drop >= infeasibility) break;
+            infeasibility -= drop;
+            flips_.push_back(j);
+            std::pop_heap(candidates_.begin(), candidates_.begin() + static_cast<std::ptrdiff_t>(first), later);
+            --first;
+        }
+        if (first == 0) return WarmDualOutcome::DualUnbounded;
+        candidates_.resize(first);
+        // Harris' second pass among the breakpoints left: the largest pivot whose breakpoint is within the
+        // tolerance-relaxed bound of the nearest.
+        double step = std::numeric_limits<double>::infinity();
+        for (const Candidate& c : candidates_) step = std::min(step, c.relaxedRatio);
+        int entering = -1;
+        double largestPivot = 0;
+        for (const Candidate& c : candidates_)
+            if (c.ratio <= step && std::abs(alpha_[c.variable]) > largestPivot)
+                largestPivot = std::abs(alpha_[c.variable]), entering = c.variable;
+        if (entering < 0) return WarmDualOutcome::DualUnbounded;
+
+        column_.setZero(rows_);
+        if (entering >= columns_) {
+            column_[entering - columns_] = -1.0;
+        } else {
+            for (Eigen::SparseMatrix<double>::InnerIterator it(A_, entering); it; ++it) column_[it.row()] = it.value();
+        }
+        factor.ftran(column_);
+        // The pivot seen from its row and from its column must agree, or the factors have lost accuracy.
+        if (std::abs(column_[p] - alpha_[entering]) > 1e-8 * (1 + std::abs(alpha_[entering])) ||
+            std::abs(column_[p]) < pivotTolerance)
+            return WarmDualOutcome::Singular;
+
+        const double dualStep = std::max(0.0, reducedCosts_[entering] / (direction * alpha_[entering])) * direction;
+        for (int j = 0; j < rows_ + columns_; ++j)
+            if (state_[static_cast<std::size_t>(j)] != SimplexStatus::Basic) reducedCosts_[j] -= dualStep * alpha_[j];
+        if (!flips_.empty()) {
+            flipMove_.setZero(rows_);
+            for (const int j : flips_) {
+                SimplexStatus& s = state_[static_cast<std::size_t>(j)];
+                const double move = s == SimplexStatus::AtLower ? upper(j) - lower(j) : lower(j) - upper(j);
+                s = s == SimplexStatus::AtLower ? SimplexStatus::AtUpper : SimplexStatus::AtLower;
+                value_[j] += move;
+                if (j >= columns_) {
+                    flipMove_[j - columns_] += move;
+                } else {
+                    for (Eigen::SparseMatrix<double>::InnerIterator it(A_, j); it; ++it) flipMove_[it.row()] -= it.value() * move;
+                }
+            }
+            factor.ftran(flipMove_);
+            basicValues_ += flipMove_;
+        }
+        const double primalStep = (basicValues_[p] - bound) / column_[p];
+        basicValues_.noalias() -= primalStep * column_;
+        basicValues_[p] = value_[entering] + primalStep;
+
+        reducedCosts_[entering] = 0;
+        reducedCosts_[leavingVariable] = -dualStep;
+        value_[leavingVariable] = bound;
+        state_[static_cast<std::size_t>(leavingVariable)] = lower(leavingVariable) == upper(leavingVariable) ? SimplexStatus::Fixed
+                                                            : toUpper                                         ? SimplexStatus::AtUpper
+                                                                                                              : SimplexStatus::AtLower;
+        position_[static_cast<std::size_t>(leavingVariable)] = -1;
+        state_[static_cast<std::size_t>(entering)] = SimplexStatus::Basic;
+        position_[static_cast<std::size_t>(entering)] = p;
+        heads_[static_cast<std::size_t>(p)] = entering;
+        factor.addEta(p, column_);
+        return WarmDualOutcome::Optimal;
+    }
+
+    const Eigen::SparseMatrix<double>& A_;
+    const LinearProgram& lp_;
+    const WarmDualSimplexOptions& options_;
+    const int rows_, columns_;
+    std::vector<SimplexStatus> state_;
+    Eigen::VectorXd value_;        // nonbasic variables' values (bounds, or 0 when free)
+    std::vector<int> position_;    // a basic variable's row in the basis, -1 when nonbasic
+    std::vector<int> heads_;       // the basic variable of each basis row
+    Eigen::VectorXd basicValues_, duals_, reducedCosts_, row_, alpha_, column_;
+    struct Candidate {
+        int variable;
+        double ratio, relaxedRatio;  // the breakpoint, and Harris' bound with the dual tolerance
+    };
+    std::vector<Candidate> candidates_;  // the ratio test's
+    std::vector<int> flips_;             // the boxed variables the ratio test passes
+    Eigen::VectorXd flipMove_;
+};
+
+}  // namespace
+
+WarmDualSimplex::WarmDualSimplex() : factor_(std::make_unique<BasisFactor>()) {}
+WarmDualSimplex::~WarmDualSimplex() = default;
+
+WarmDualOutcome WarmDualSimplex::solve(const LinearProgram& lp, std::vector<unsigned char>& status,
+                                       const WarmDualSimplexOptions& options) {
+    pivots_ = 0;
+    DualSimplexRun run(lp, options);
+    if (!lp.A || !run.readBasis(status)) return WarmDualOutcome::NoBasis;
+    const WarmDualOutcome outcome = run.run(*factor_, pivots_);
+    if (outcome != WarmDualOutcome::Optimal) return outcome;
+    run.readSolution(columnValues_, rowDuals_);
+    run.writeBasis(status);
+    return outcome;
+}
+
+}  // namespace sinew
