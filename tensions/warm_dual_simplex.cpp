@@ -11,6 +11,10 @@ namespace {
 
 constexpr double kInfinite = 1e30;
 
+// An unbounded variable's artificial other bound, this far from its finite one (newtons for the contact
+// forces: a thousand times a body's weight).
+constexpr double kArtificialRange = 1e6;
+
 // Below this reciprocal condition estimate the basis is left to Clp, which repairs singular bases.
 constexpr double kSmallestReciprocalCondition = 1e-13;
 
@@ -130,6 +134,7 @@ public:
         state_.resize(static_cast<std::size_t>(total));
         value_.setZero(total);
         position_.assign(static_cast<std::size_t>(total), -1);
+        artificial_.assign(static_cast<std::size_t>(total), 0);
         heads_.clear();
         for (int j = 0; j < total; ++j) {
             const auto code = static_cast<SimplexStatus>(status[static_cast<std::size_t>(j)] & 7);
@@ -167,7 +172,8 @@ public:
         for (;;) {
             const int leaving = chooseLeavingRow();
             if (leaving < 0) {
-                if (factor.etas == 0 || verified) return WarmDualOutcome::Optimal;
+                if (factor.etas == 0 || verified)
+                    return isAtArtificialBound() ? WarmDualOutcome::NotDualFeasible : WarmDualOutcome::Optimal;
                 verified = true;
                 // Proved only on values and reduced costs computed afresh, not on the updated ones.
                 if (!refresh(factor, dualFeasible, false)) return WarmDualOutcome::Singular;
@@ -176,8 +182,15 @@ public:
             }
             if (pivots >= options_.maxPivots) return WarmDualOutcome::TooManyPivots;
             verified = false;
-            const WarmDualOutcome outcome = pivot(factor, leaving);
-            if (outcome != WarmDualOutcome::Optimal) return outcome;
+            const PivotResult result = pivot(factor, leaving);
+            if (result == PivotResult::DualUnbounded) return WarmDualOutcome::DualUnbounded;
+            if (result == PivotResult::LostAccuracy) {
+                // The updates' rounding, or a poor factorisation: once more from a fresh one.
+                if (factor.etas == 0) return WarmDualOutcome::Singular;
+                if (!refresh(factor, dualFeasible)) return WarmDualOutcome::Singular;
+                if (!dualFeasible) return WarmDualOutcome::NotDualFeasible;
+                continue;
+            }
             ++pivots;
             if (factor.etas >= options_.refactorEvery) {
                 if (!refresh(factor, dualFeasible)) return WarmDualOutcome::Singular;
@@ -261,12 +274,16 @@ private:
             const bool wrongAtUpper = s == SimplexStatus::AtUpper && d > tolerance;
             if (s == SimplexStatus::Free && std::abs(d) > tolerance) return false;
             if (!wrongAtLower && !wrongAtUpper) continue;
-            if (lower(j) <= -kInfinite || upper(j) >= kInfinite) return false;
             s = wrongAtLower ? SimplexStatus::AtUpper : SimplexStatus::AtLower;
-            value_[j] = wrongAtLower ? upper(j) : lower(j);
+            const double other = wrongAtLower ? upper(j) : lower(j);
+            const bool unbounded = !(std::abs(other) < kInfinite);
+            value_[j] = !unbounded ? other : wrongAtLower ? lower(j) + kArtificialRange : upper(j) - kArtificialRange;
+            artificial_[static_cast<std::size_t>(j)] = unbounded;
         }
         return true;
     }
+
+    bool isAtArtificialBound() const { return std::find(artificial_.begin(), artificial_.end(), 1) != artificial_.end(); }
 
     // The basic variable furthest beyond a bound (Dantzig's rule: the warm frames need a few pivots, where
     // better pricing does not pay its upkeep), or -1 when every one is within the tolerance.
@@ -282,8 +299,10 @@ private:
         return leaving;
     }
 
-    // One dual simplex pivot on basis row p (Harris' two-pass ratio test); Optimal means "pivoted".
-    WarmDualOutcome pivot(BasisFactor& factor, int p) {
+    enum class PivotResult { Pivoted, DualUnbounded, LostAccuracy };
+
+    // One dual simplex pivot on basis row p.
+    PivotResult pivot(BasisFactor& factor, int p) {
         const int leavingVariable = heads_[static_cast<std::size_t>(p)];
         const bool toUpper = basicValues_[p] > upper(leavingVariable);
         const double direction = toUpper ? 1.0 : -1.0;
@@ -332,7 +351,7 @@ private:
             std::pop_heap(candidates_.begin(), candidates_.begin() + static_cast<std::ptrdiff_t>(first), later);
             --first;
         }
-        if (first == 0) return WarmDualOutcome::DualUnbounded;
+        if (first == 0) return PivotResult::DualUnbounded;
         candidates_.resize(first);
         // Harris' second pass among the breakpoints left: the largest pivot whose breakpoint is within the
         // tolerance-relaxed bound of the nearest.
@@ -343,7 +362,7 @@ private:
         for (const Candidate& c : candidates_)
             if (c.ratio <= step && std::abs(alpha_[c.variable]) > largestPivot)
                 largestPivot = std::abs(alpha_[c.variable]), entering = c.variable;
-        if (entering < 0) return WarmDualOutcome::DualUnbounded;
+        if (entering < 0) return PivotResult::DualUnbounded;
 
         column_.setZero(rows_);
         if (entering >= columns_) {
@@ -355,7 +374,7 @@ private:
         // The pivot seen from its row and from its column must agree, or the factors have lost accuracy.
         if (std::abs(column_[p] - alpha_[entering]) > 1e-8 * (1 + std::abs(alpha_[entering])) ||
             std::abs(column_[p]) < pivotTolerance)
-            return WarmDualOutcome::Singular;
+            return PivotResult::LostAccuracy;
 
         const double dualStep = std::max(0.0, reducedCosts_[entering] / (direction * alpha_[entering])) * direction;
         for (int j = 0; j < rows_ + columns_; ++j)
@@ -389,9 +408,10 @@ private:
         position_[static_cast<std::size_t>(leavingVariable)] = -1;
         state_[static_cast<std::size_t>(entering)] = SimplexStatus::Basic;
         position_[static_cast<std::size_t>(entering)] = p;
+        artificial_[static_cast<std::size_t>(entering)] = 0;
         heads_[static_cast<std::size_t>(p)] = entering;
         factor.addEta(p, column_);
-        return WarmDualOutcome::Optimal;
+        return PivotResult::Pivoted;
     }
 
     const Eigen::SparseMatrix<double>& A_;
@@ -401,6 +421,10 @@ private:
     std::vector<SimplexStatus> state_;
     Eigen::VectorXd value_;        // nonbasic variables' values (bounds, or 0 when free)
     std::vector<int> position_;    // a basic variable's row in the basis, -1 when nonbasic
+    // Nonbasic at an artificial bound: kArtificialRange from its finite bound, where the other one is infinite
+    // and its reduced cost wants it there (Clp's fake bounds: the contact forces' columns have no cap). An
+    // optimum with one there proves nothing about the real problem and goes to Clp.
+    std::vector<char> artificial_;
     std::vector<int> heads_;       // the basic variable of each basis row
     Eigen::VectorXd basicValues_, duals_, reducedCosts_, row_, alpha_, column_;
     struct Candidate {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "support/ipopt_reference.hpp"
 #include "support/random_distribution_problems.hpp"
@@ -265,6 +266,35 @@ TEST(WarmDualSimplex, ReSolvesAMotionFromEachFramesOptimalBasis) {
         slackPivots += cold.getPivots();
     }
     EXPECT_LT(warmPivots, slackPivots / 4);
+}
+
+// Columns with no upper bound (the contact forces'): a reduced cost that turns negative at the lower bound
+// has no other bound to flip to, and gets an artificial one that the optimum must leave.
+TEST(WarmDualSimplex, ReSolvesAMotionWhoseColumnsHaveNoCap) {
+    DistributionProblem base = makeMotionBase(2);
+    base.upper.setConstant(std::numeric_limits<double>::infinity());
+    WarmDualSimplex simplex;
+    std::vector<unsigned char> status = makeSlackBasis(base);
+    WarmDualSimplexOptions options;
+    options.maxPivots = 1000;
+    int optimal = 0;
+    for (int frame = 0; frame < 20; ++frame) {
+        const DistributionProblem p = makeMotionFrame(base, frame, 1.0);
+        const WarmLp lp(p);
+        const std::string name = "frame " + std::to_string(frame);
+        const std::vector<unsigned char> before = status;
+        const WarmDualOutcome outcome = simplex.solve(lp.lp, status, options);
+        if (outcome != WarmDualOutcome::Optimal) {
+            EXPECT_EQ(outcome, WarmDualOutcome::NotDualFeasible) << name;
+            EXPECT_EQ(status, before) << name;
+            status = makeSlackBasis(p);
+            ASSERT_EQ(simplex.solve(lp.lp, status, options), WarmDualOutcome::Optimal) << name;
+        } else {
+            ++optimal;
+        }
+        expectClpsOptimum(p, simplex, name);
+    }
+    EXPECT_GE(optimal, 15);
 }
 
 TEST(WarmDualSimplex, LeavesWhatItCannotProveToClpWithTheBasisUnchanged) {
