@@ -35,12 +35,16 @@ void checkFinite(const char* field, const Eigen::VectorXd& v) {
                         describe(v[i]) + ", expected a finite number within +-1e20");
 }
 
-// max(1, |tau|, max_i sum_j |A_ij x_j|): the size of the generalized forces in play.
-double calcRowScale(const DistributionProblem& problem, const Eigen::VectorXd& x) {
+// A x, and max(1, |tau|, max_i sum_j |A_ij x_j|): the size of the generalized forces in play. One pass.
+double calcRowProducts(const DistributionProblem& problem, const Eigen::VectorXd& x, Eigen::VectorXd& Ax) {
+    Ax.setZero(problem.getNumRows());
     Eigen::VectorXd magnitude = Eigen::VectorXd::Zero(problem.getNumRows());
     for (int j = 0; j < problem.A.outerSize(); ++j)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, j); it; ++it)
-            magnitude[it.row()] += std::abs(it.value() * x[j]);
+        for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, j); it; ++it) {
+            const double product = it.value() * x[j];
+            Ax[it.row()] += product;
+            magnitude[it.row()] += std::abs(product);
+        }
     return std::max({1.0, problem.target.cwiseAbs().maxCoeff(), magnitude.maxCoeff()});
 }
 
@@ -54,12 +58,19 @@ double boundScale(double bound) { return std::isfinite(bound) ? std::max(1.0, st
 void addVariableResiduals(const DistributionProblem& problem, const Eigen::VectorXd& x, const Eigen::VectorXd& y,
                           const Eigen::VectorXd& first, KktResiduals& kkt, double scaleFloor = 0) {
     const int numBounded = problem.getNumBounded();
-    const Eigen::VectorXd Aty = problem.A.transpose() * y;
-    Eigen::VectorXd magnitude = Eigen::VectorXd::Zero(problem.getNumVariables());
-    for (int j = 0; j < problem.A.outerSize(); ++j)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, j); it; ++it)
-            magnitude[j] += std::abs(it.value() * y[it.row()]);
-    double scale = std::max({first.cwiseAbs().maxCoeff(), magnitude.maxCoeff(), scaleFloor});
+    Eigen::VectorXd Aty = Eigen::VectorXd::Zero(problem.getNumVariables());
+    double largestMagnitude = 0;
+    for (int j = 0; j < problem.A.outerSize(); ++j) {
+        double product = 0, magnitude = 0;
+        for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, j); it; ++it) {
+            const double term = it.value() * y[it.row()];
+            product += term;
+            magnitude += std::abs(term);
+        }
+        Aty[j] = product;
+        largestMagnitude = std::max(largestMagnitude, magnitude);
+    }
+    double scale = std::max({first.cwiseAbs().maxCoeff(), largestMagnitude, scaleFloor});
     if (!(scale > 0)) scale = 1;
     double dual = 0;
     for (int j = 0; j < problem.getNumVariables(); ++j) {
@@ -135,8 +146,8 @@ double KktResiduals::getMax() const { return std::max({primal, dual, complementa
 KktResiduals calcLpKktResiduals(const DistributionProblem& problem, const Eigen::VectorXd& x,
                                 const Eigen::VectorXd& y) {
     KktResiduals kkt;
-    const double rowScale = calcRowScale(problem, x);
-    const Eigen::VectorXd Ax = problem.A * x;
+    Eigen::VectorXd Ax;
+    const double rowScale = calcRowProducts(problem, x, Ax);
     const double yScale = std::max(y.size() ? y.cwiseAbs().maxCoeff() : 0.0, 1e-300);
     for (int i = 0; i < problem.getNumRows(); ++i) {
         const double band = problem.isEquality[static_cast<std::size_t>(i)] ? 0 : problem.tolerance[i];
@@ -156,8 +167,9 @@ KktResiduals calcLpKktResiduals(const DistributionProblem& problem, const Eigen:
 KktResiduals calcQpKktResiduals(const DistributionProblem& problem, const Eigen::VectorXd& x,
                                 const Eigen::VectorXd& y, const Eigen::VectorXd& center) {
     KktResiduals kkt;
-    const double rowScale = calcRowScale(problem, x);
-    const Eigen::VectorXd residual = problem.target - problem.A * x;
+    Eigen::VectorXd residual;
+    const double rowScale = calcRowProducts(problem, x, residual);
+    residual = problem.target - residual;
     Eigen::VectorXd yAll = y;
     for (int i = 0; i < problem.getNumRows(); ++i) {
         if (problem.isEquality[static_cast<std::size_t>(i)])
