@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <vector>
-#include <cstdio>
-#include <cstdlib>
 
 namespace sinew {
 namespace {
@@ -225,9 +223,7 @@ struct LpSolver::Backend {
         const LinearProgram lp{&problem.A, arrays.columnLower.data(), arrays.columnUpper.data(), arrays.cost.data(),
                                arrays.rowLower.data(), arrays.rowUpper.data()};
         warmBasis = basis;
-        const WarmDualOutcome o = warm.solve(lp, warmBasis);
-        if (std::getenv("SINEW_DEBUG_WARM")) std::fprintf(stderr, "warm: %s pivots %d\n", toString(o), warm.getPivots());
-        if (o != WarmDualOutcome::Optimal) return false;
+        if (warm.solve(lp, warmBasis) != WarmDualOutcome::Optimal) return false;
         result.x = warm.getColumnValues();
         if (movesRowsWhenClamped(problem, result.x)) return false;
         basis.swap(warmBasis);
