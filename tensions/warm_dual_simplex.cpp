@@ -271,9 +271,7 @@ public:
     }
 
     WarmDualOutcome run(BasisFactor& factor, int& pivots) {
-        bool dualFeasible = true;
-        if (!refresh(factor, dualFeasible)) return WarmDualOutcome::Singular;
-        if (!dualFeasible) return WarmDualOutcome::NotDualFeasible;
+        if (!refresh(factor)) return WarmDualOutcome::Singular;
         bool verified = false;  // the values and reduced costs were computed afresh since the last pivot
         for (;;) {
             const int leaving = chooseLeavingRow();
@@ -282,8 +280,7 @@ public:
                     return isAtArtificialBound() ? WarmDualOutcome::NotDualFeasible : WarmDualOutcome::Optimal;
                 verified = true;
                 // Proved only on values and reduced costs computed afresh, not on the updated ones.
-                if (!refresh(factor, dualFeasible, false)) return WarmDualOutcome::Singular;
-                if (!dualFeasible) return WarmDualOutcome::NotDualFeasible;
+                if (!refresh(factor, false)) return WarmDualOutcome::Singular;
                 continue;
             }
             if (pivots >= options_.maxPivots) return WarmDualOutcome::TooManyPivots;
@@ -293,14 +290,12 @@ public:
             if (result == PivotResult::LostAccuracy) {
                 // The updates' rounding, or a poor factorisation: once more from a fresh one.
                 if (factor.etas == 0) return WarmDualOutcome::Singular;
-                if (!refresh(factor, dualFeasible)) return WarmDualOutcome::Singular;
-                if (!dualFeasible) return WarmDualOutcome::NotDualFeasible;
+                if (!refresh(factor)) return WarmDualOutcome::Singular;
                 continue;
             }
             ++pivots;
             if (factor.etas >= options_.refactorEvery) {
-                if (!refresh(factor, dualFeasible)) return WarmDualOutcome::Singular;
-                if (!dualFeasible) return WarmDualOutcome::NotDualFeasible;
+                if (!refresh(factor)) return WarmDualOutcome::Singular;
             }
         }
     }
@@ -340,11 +335,12 @@ private:
         return even + odd;
     }
 
-    // A fresh factorisation, the basic values from the nonbasic ones and the reduced costs from the costs;
-    // then dual feasibility restored by moving each boxed nonbasic variable whose reduced cost points the
-    // wrong way to its other bound (the frame's change of A turns some: a wire at its cap that no longer
-    // pays, a row's band edge). False when singular or when an unboxed variable is dual infeasible.
-    bool refresh(BasisFactor& factor, bool& dualFeasible, bool refactor = true) {
+    // A fresh factorisation (unless `refactor` is false: the current one with its updates), the reduced
+    // costs from the costs, dual feasibility restored by moving each nonbasic variable whose reduced cost
+    // points the wrong way to its other bound (the frame's change of A turns some: a wire at its cap that no
+    // longer pays, a row's band edge), an artificial one where it has none; then the basic values from the
+    // nonbasic ones. False when the basis is singular.
+    bool refresh(BasisFactor& factor, bool refactor = true) {
         if (refactor && !factor.factorize(A_, heads_)) return false;
         duals_.resize(rows_);
         for (int k = 0; k < rows_; ++k) duals_[k] = cost(heads_[static_cast<std::size_t>(k)]);
@@ -352,7 +348,7 @@ private:
         reducedCosts_.setZero(rows_ + columns_);
         for (int j = 0; j < rows_ + columns_; ++j)
             if (position_[static_cast<std::size_t>(j)] < 0) reducedCosts_[j] = cost(j) - dotColumn(j, duals_);
-        dualFeasible = flipToDualFeasibility();
+        flipToDualFeasibility();
         computeBasicValues(factor);
         return basicValues_.allFinite() && duals_.allFinite();
     }
@@ -371,22 +367,23 @@ private:
         factor.ftran(basicValues_);
     }
 
-    bool flipToDualFeasibility() {
+    void flipToDualFeasibility() {
         const double tolerance = options_.dualTolerance;
         for (int j = 0; j < rows_ + columns_; ++j) {
             const double d = reducedCosts_[j];
             SimplexStatus& s = state_[static_cast<std::size_t>(j)];
-            const bool wrongAtLower = s == SimplexStatus::AtLower && d < -tolerance;
-            const bool wrongAtUpper = s == SimplexStatus::AtUpper && d > tolerance;
-            if (s == SimplexStatus::Free && std::abs(d) > tolerance) return false;
+            const bool free = s == SimplexStatus::Free && std::abs(d) > tolerance;
+            const bool wrongAtLower = (s == SimplexStatus::AtLower && d < -tolerance) || (free && d < 0);
+            const bool wrongAtUpper = (s == SimplexStatus::AtUpper && d > tolerance) || (free && d > 0);
             if (!wrongAtLower && !wrongAtUpper) continue;
             s = wrongAtLower ? SimplexStatus::AtUpper : SimplexStatus::AtLower;
             const double other = wrongAtLower ? upper(j) : lower(j);
             const bool unbounded = !(std::abs(other) < kInfinite);
-            value_[j] = !unbounded ? other : wrongAtLower ? lower(j) + kArtificialRange : upper(j) - kArtificialRange;
+            // An artificial bound is kArtificialRange from the variable's finite bound, or from 0 if it has none.
+            const double anchor = std::abs(lower(j)) < kInfinite ? lower(j) : std::abs(upper(j)) < kInfinite ? upper(j) : 0.0;
+            value_[j] = !unbounded ? other : wrongAtLower ? anchor + kArtificialRange : anchor - kArtificialRange;
             artificial_[static_cast<std::size_t>(j)] = unbounded;
         }
-        return true;
     }
 
     bool isAtArtificialBound() const { return std::find(artificial_.begin(), artificial_.end(), 1) != artificial_.end(); }

@@ -330,21 +330,43 @@ TEST(WarmDualSimplex, LeavesWhatItCannotProveToClpWithTheBasisUnchanged) {
     freeAtLower[static_cast<std::size_t>(feasible.getNumBounded())] = static_cast<unsigned char>(SimplexStatus::AtLower);
     EXPECT_EQ(simplex.solve(lp.lp, freeAtLower), WarmDualOutcome::NoBasis);
 
-    // A basis that is dual infeasible on an unboxed variable: a free column at its "value" 0 with a
-    // reduced cost that is not zero (the costs made to price it).
-    const int freeColumn = feasible.getNumBounded();
+    // An unbounded LP, min -x1 + x2/2 s.t. 0 <= x1 - x2 <= 1, x >= 0: from the slack basis x1's reduced
+    // cost sends it to an artificial bound, where the optimum of the bounded problem keeps it.
+    Eigen::SparseMatrix<double> rayA(1, 2);
+    rayA.insert(0, 0) = 1;
+    rayA.insert(0, 1) = -1;
+    rayA.makeCompressed();
+    const double inf = std::numeric_limits<double>::infinity();
+    const std::vector<double> zeros{0, 0}, infinities{inf, inf}, rayCost{-1, 0.5}, rowLow{0}, rowUp{1};
+    const LinearProgram ray{&rayA, zeros.data(), infinities.data(), rayCost.data(), rowLow.data(), rowUp.data()};
+    std::vector<unsigned char> rayBasis{static_cast<unsigned char>(SimplexStatus::AtLower),
+                                        static_cast<unsigned char>(SimplexStatus::AtLower),
+                                        static_cast<unsigned char>(SimplexStatus::Basic)};
+    EXPECT_EQ(simplex.solve(ray, rayBasis), WarmDualOutcome::NotDualFeasible);
+}
+
+// A basis where a free column (a loop force) is nonbasic with a reduced cost that is not zero: it has no
+// bound to flip to, gets an artificial one, and is pivoted into the basis on the way to Clp's optimum.
+TEST(WarmDualSimplex, PivotsAFreeColumnInFromAnArtificialBound) {
+    const DistributionProblem p = makeMotionFrame(makeMotionBase(0), 0, 1.0);
+    const WarmLp lp(p);
+    const int freeColumn = p.getNumBounded();
     int wire = -1, row = -1;
     for (int j = 0; j < freeColumn && wire < 0; ++j)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(feasible.A, j); it; ++it)
-            if (it.value() != 0 && feasible.A.coeff(it.row(), freeColumn) != 0) {
+        for (Eigen::SparseMatrix<double>::InnerIterator it(p.A, j); it; ++it)
+            if (it.value() != 0 && p.A.coeff(it.row(), freeColumn) != 0) {
                 wire = j, row = static_cast<int>(it.row());
                 break;
             }
     ASSERT_GE(wire, 0);
-    std::vector<unsigned char> wireBasic = slacks;  // the wire basic in its row's place
-    wireBasic[static_cast<std::size_t>(feasible.getNumVariables() + row)] = static_cast<unsigned char>(SimplexStatus::AtLower);
-    wireBasic[static_cast<std::size_t>(wire)] = static_cast<unsigned char>(SimplexStatus::Basic);
-    EXPECT_EQ(simplex.solve(lp.lp, wireBasic), WarmDualOutcome::NotDualFeasible);
+    std::vector<unsigned char> status = makeSlackBasis(p);  // the wire basic in its row's place: y != 0
+    status[static_cast<std::size_t>(p.getNumVariables() + row)] = static_cast<unsigned char>(SimplexStatus::AtLower);
+    status[static_cast<std::size_t>(wire)] = static_cast<unsigned char>(SimplexStatus::Basic);
+    WarmDualSimplex simplex;
+    WarmDualSimplexOptions options;
+    options.maxPivots = 1000;
+    ASSERT_EQ(simplex.solve(lp.lp, status, options), WarmDualOutcome::Optimal);
+    expectClpsOptimum(p, simplex, "from the wire's basis");
 }
 
 }  // namespace

@@ -45,8 +45,8 @@ struct WarmDualSimplexOptions {
 enum class WarmDualOutcome {
     Optimal,          // proved optimal: values and duals are set, the status array holds the optimal basis
     NoBasis,          // the status array is no basis of this problem (sizes, counts, superbasic variables)
-    NotDualFeasible,  // a free variable's reduced cost is not zero, or the optimum leaves an unbounded
-                      // variable at the artificial bound its reduced cost sent it to
+    NotDualFeasible,  // the optimum leaves an unbounded variable at the artificial bound that its reduced
+                      // cost sent it to (the basis was not dual feasible, and no real bound mends it)
     DualUnbounded,    // no entering variable: the frame is primal infeasible
     Singular,         // the basis matrix is singular or too ill-conditioned
     TooManyPivots     // maxPivots reached
