@@ -4,14 +4,15 @@
 //     min cost^T x   s.t.  rowLower <= A x <= rowUpper,  columnLower <= x <= columnUpper
 //
 // from the previous frame's optimal basis. A motion's consecutive frames change A, the bounds and the costs a
-// little, so that basis is nearly always still dual feasible and a few dual pivots from optimal (10 on the
-// whole-body benchmark). Clp pays a fresh set-up for each frame (scaling, the row copy, a factorisation at
-// the start and another at the end): six times the pivots' work. This path keeps nothing but the basis: it
-// factorises the basis matrix with KLU (sparse LU, SuiteSparse), prices and pivots on the unscaled problem
-// with product-form updates, and answers only a basis it has proved optimal (primal and dual feasible to its
-// tolerances, with reduced costs recomputed from scratch). Anything else (a basis no longer dual feasible,
-// an infeasible frame, a singular or ill-conditioned basis, more pivots than allowed) is left to Clp: the
-// outcome says why, and the caller's basis is then unchanged.
+// little, so that basis is a few dual pivots from optimal (9 on the whole-body benchmark). Clp pays a fresh
+// set-up for each frame (scaling, the row copy, a factorisation at the start and another at the end): six
+// times the pivots' work. This path keeps nothing but the basis: it factorises the basis matrix with KLU
+// (sparse LU, SuiteSparse), moves the variables whose reduced costs the frame turned to their other bounds
+// (artificial ones where they have none), and pivots on the unscaled problem with product-form updates and
+// the bound-flipping ratio test. It answers only a basis it has proved optimal (primal and dual feasible to
+// its tolerances, with values and reduced costs recomputed from the factors, no variable at an artificial
+// bound). Anything else (an infeasible frame, a singular basis, an optimum at an artificial bound, more
+// pivots than allowed) is left to Clp: the outcome says why, and the caller's basis is then unchanged.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <memory>
