@@ -26,8 +26,7 @@ void UnactuatedRows::judgeByRigidMotion(const Data& data, const DistributionProb
         virtualLinkMotion_[v].compute(calcJointMotion_G(model_.getJoint(link), data, link, p_ref));
     }
     // Column c of rigidMotion_: the u of the rigid motion along mobility c; one pass over A for all of them.
-    const Eigen::Index n = joint.nu;
-    rigidMotion_.leftCols(n).setZero();
+    rigidMotion_.setZero();  // the columns past n stay zero, so whole rows can be added
     for (int c = 0; c < joint.nu; ++c) {
         rigidMotion_(joint.uStart + c, c) = 1;
         for (std::size_t v = 0; v < virtualLinksOnGround_.size(); ++v) {
@@ -38,10 +37,10 @@ void UnactuatedRows::judgeByRigidMotion(const Data& data, const DistributionProb
     SpatialVector actuation = SpatialVector::Zero(), along;
     for (Eigen::Index k = 0; k < problem.A.outerSize(); ++k) {
         if (k >= externalBegin && k < externalEnd) continue;
-        along.head(n).setZero();
+        along.setZero();
         for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, k); it; ++it)
-            along.head(n) += it.value() * rigidMotion_.row(it.row()).head(n).transpose();
-        actuation.head(n) = actuation.head(n).cwiseMax(along.head(n).cwiseAbs());
+            along += it.value() * rigidMotion_.row(it.row()).transpose();
+        actuation = actuation.cwiseMax(along.cwiseAbs());
     }
     for (int c = 0; c < joint.nu; ++c) {
         rowSize_[joint.uStart + c] = actuation[c];

@@ -42,7 +42,9 @@ private:
     double threshold_;
     std::vector<int> virtualLinksOnGround_;  // virtual links whose joints hang from ground
     std::vector<Eigen::FullPivLU<JointMotion>> virtualLinkMotion_;  // their motion subspaces, factorized per frame
-    Eigen::MatrixXd rigidMotion_;  // (nu x 6) per root mobility, u moving everything rigidly
+    // (nu x 6) per root mobility, u moving everything rigidly; by rows, so that a column's entries each add
+    // one fixed-size row
+    Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor> rigidMotion_;
     Eigen::VectorXd rowSize_;      // (nu) largest |generalized force per unit variable| per row
     Eigen::VectorXd unbalanced_;   // (nu) per row, the generalized force no variable could balance if unactuated
 };
