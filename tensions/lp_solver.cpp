@@ -216,21 +216,22 @@ struct LpSolver::Backend {
     }
 
     // The warm path (docs/tensions.md): the last frame's basis re-solved by WarmDualSimplex, kept when it is
-    // proved optimal and its answer lies within the bounds as Clp's finish requires; false leaves the frame
-    // to Clp, from that same basis.
-    bool solveWarm(const DistributionProblem& problem, DistributionResult& result) {
-        if (lastInfeasible || !hasBasisFor(problem)) return false;
+    // proved optimal and its answer lies within the bounds as Clp's finish requires; any other outcome
+    // leaves the frame to Clp, from that same basis (NoBasis: not tried).
+    WarmDualOutcome solveWarm(const DistributionProblem& problem, DistributionResult& result) {
+        if (lastInfeasible || !hasBasisFor(problem)) return WarmDualOutcome::NoBasis;
         const LinearProgram lp{&problem.A, arrays.columnLower.data(), arrays.columnUpper.data(), arrays.cost.data(),
                                arrays.rowLower.data(), arrays.rowUpper.data()};
         warmBasis = basis;
-        if (warm.solve(lp, warmBasis) != WarmDualOutcome::Optimal) return false;
+        const WarmDualOutcome outcome = warm.solve(lp, warmBasis);
+        if (outcome != WarmDualOutcome::Optimal) return outcome;
         result.x = warm.getColumnValues();
-        if (movesRowsWhenClamped(problem, result.x)) return false;
+        if (movesRowsWhenClamped(problem, result.x)) return WarmDualOutcome::NoBasis;
         basis.swap(warmBasis);
         result.multipliers = warm.getRowDuals();
         result.iterations = warm.getPivots();
         ++warmFrames;
-        return true;
+        return WarmDualOutcome::Optimal;
     }
 
     // Dual simplex from the current basis; on trouble (iteration limit, numerical errors) once more from
@@ -310,10 +311,11 @@ void LpSolver::solve(const DistributionProblem& problem, DistributionResult& res
     result.reserve.setZero(rows);
     result.multipliers.setZero(rows);
     result.status = DistributionStatus::Failed;
-    if (backend_->solveWarm(problem, result)) {
+    const WarmDualOutcome warm = backend_->solveWarm(problem, result);
+    if (warm == WarmDualOutcome::Optimal) {
         result.status = DistributionStatus::Optimal;
     } else {
-        solveWithClp(problem, result);
+        solveWithClp(problem, result, warm == WarmDualOutcome::DualUnbounded);
         backend_->keepClpBasis();
     }
     if (!result.x.allFinite()) result.x.setZero();
@@ -324,7 +326,7 @@ void LpSolver::solve(const DistributionProblem& problem, DistributionResult& res
     result.kkt = calcLpKktResiduals(problem, result.x, result.multipliers);
 }
 
-void LpSolver::solveWithClp(const DistributionProblem& problem, DistributionResult& result) {
+void LpSolver::solveWithClp(const DistributionProblem& problem, DistributionResult& result, bool warmDualUnbounded) {
     const int rows = problem.getNumRows(), columns = problem.getNumVariables();
     backend_->load(problem);
     const double scale = std::max(1.0, problem.target.cwiseAbs().maxCoeff());
@@ -337,6 +339,10 @@ void LpSolver::solveWithClp(const DistributionProblem& problem, DistributionResu
     bool infeasible = backend_->lastInfeasible &&
                       solvePhaseOne(problem, backend_->arrays, result.x, reserve, result.iterations, &backend_->phaseOneBasis) &&
                       needsReserves(reserve);
+    // The warm path's dual ran unbounded: phase 1 goes first too, as Clp's dual simplex would find the same.
+    if (!infeasible && warmDualUnbounded)
+        infeasible = solvePhaseOne(problem, backend_->arrays, result.x, reserve, result.iterations, &backend_->phaseOneBasis) &&
+                     needsReserves(reserve);
     int status = 1;
     if (!infeasible) {
         result.x.setZero(columns);

@@ -105,6 +105,30 @@ TEST(LpSolver, WarmStartsGiveTheColdAnswer) {
     EXPECT_GE(warm.getWarmFrames(), 15);  // the rest went to Clp; each answer is checked above either way
 }
 
+// Feasible and infeasible frames alternating: after each feasible frame the warm path tries the next and finds
+// its dual unbounded; phase 1 then gives the cold solver's least reserves, and the feasible frames their
+// optimum.
+TEST(LpSolver, InfeasibleFramesBetweenFeasibleOnesGetTheColdReserves) {
+    const DistributionProblem base = makeMotionBase(0);
+    LpSolver warm;
+    DistributionResult warmResult, coldResult;
+    for (int frame = 0; frame < 12; ++frame) {
+        const bool feasible = frame % 2 == 0;
+        const DistributionProblem p = makeMotionFrame(base, frame, feasible ? 1.0 : 3.0);
+        warm.solve(p, warmResult);
+        LpSolver cold;
+        cold.solve(p, coldResult);
+        const std::string name = "frame " + std::to_string(frame);
+        ASSERT_EQ(coldResult.status, feasible ? DistributionStatus::Optimal : DistributionStatus::Infeasible) << name;
+        ASSERT_EQ(warmResult.status, coldResult.status) << name;
+        const double coldReserve = coldResult.reserve.lpNorm<1>();
+        EXPECT_NEAR(warmResult.reserve.lpNorm<1>(), coldReserve, 1e-9 * std::max(1.0, coldReserve)) << name;
+        if (feasible) {
+            EXPECT_NEAR(warmResult.objective, coldResult.objective, 1e-9 * coldResult.objective) << name;
+        }
+    }
+}
+
 // A run of infeasible frames, as a motion has them: after the first, phase 1 goes first and starts from the
 // last one's basis. Each frame's least reserves (their L1 norm: no equality rows, so phase 1 prices every
 // row at 1) are those of a cold solver, in a fraction of the pivots; the feasible frame after the run is

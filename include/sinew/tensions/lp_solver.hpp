@@ -33,8 +33,9 @@ public:
     int getWarmFrames() const;
 
 private:
-    // Clp's dual simplex from the last frame's basis, phase 1 and the least-cost LP with reserves.
-    void solveWithClp(const DistributionProblem& problem, DistributionResult& result);
+    // Clp's dual simplex from the last frame's basis, phase 1 and the least-cost LP with reserves;
+    // warmDualUnbounded: the warm path found the frame infeasible, so phase 1 goes first.
+    void solveWithClp(const DistributionProblem& problem, DistributionResult& result, bool warmDualUnbounded);
     void solveWithReserves(const DistributionProblem& problem, const Eigen::VectorXd& reserve, DistributionResult& result);
 
     struct Backend;
