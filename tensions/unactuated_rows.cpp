@@ -1,5 +1,6 @@
 #include "sinew/tensions/unactuated_rows.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "sinew/core/kinematics.hpp"
@@ -54,7 +55,7 @@ double UnactuatedRows::apply(const Data& data, const Eigen::VectorXd& tau, int e
     const auto addEntries = [&](Eigen::Index begin, Eigen::Index end) {
         for (Eigen::Index k = begin; k < end; ++k)
             for (Eigen::SparseMatrix<double>::InnerIterator it(problem.A, k); it; ++it)
-                rowSize_[it.row()] = std::fmax(rowSize_[it.row()], std::fabs(it.value()));
+                rowSize_[it.row()] = std::max(rowSize_[it.row()], std::abs(it.value()));  // finite: validated
     };
     rowSize_.setZero();
     unbalanced_ = tau;

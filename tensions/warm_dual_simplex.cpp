@@ -66,21 +66,26 @@ public:
         release();
         etas = 0;
         const int columns = static_cast<int>(A.cols());
+        const int* columnStarts = A.outerIndexPtr();
         size = static_cast<int>(heads.size());
-        starts.assign(1, 0);
-        rowIndices.clear();
-        values.clear();
-        for (const int j : heads) {
-            if (j < columns) {
-                for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it) {
-                    rowIndices.push_back(static_cast<int>(it.row()));
-                    values.push_back(it.value());
-                }
-            } else {
-                rowIndices.push_back(j - columns);
-                values.push_back(-1.0);
+        starts.resize(heads.size() + 1);
+        starts[0] = 0;
+        for (std::size_t k = 0; k < heads.size(); ++k) {
+            const int j = heads[k];
+            starts[k + 1] = starts[k] + (j < columns ? columnStarts[j + 1] - columnStarts[j] : 1);
+        }
+        rowIndices.resize(static_cast<std::size_t>(starts.back()));
+        values.resize(static_cast<std::size_t>(starts.back()));
+        for (std::size_t k = 0; k < heads.size(); ++k) {
+            const int j = heads[k];
+            const std::size_t at = static_cast<std::size_t>(starts[k]);
+            if (j >= columns) {
+                rowIndices[at] = j - columns;
+                values[at] = -1.0;
+                continue;
             }
-            starts.push_back(static_cast<int>(rowIndices.size()));
+            std::copy(A.innerIndexPtr() + columnStarts[j], A.innerIndexPtr() + columnStarts[j + 1], rowIndices.begin() + static_cast<std::ptrdiff_t>(at));
+            std::copy(A.valuePtr() + columnStarts[j], A.valuePtr() + columnStarts[j + 1], values.begin() + static_cast<std::ptrdiff_t>(at));
         }
         symbolic = klu_analyze(size, starts.data(), rowIndices.data(), &common);
         if (!symbolic) return false;
@@ -556,7 +561,7 @@ WarmDualOutcome WarmDualSimplex::solve(const LinearProgram& lp, std::vector<unsi
                                        const WarmDualSimplexOptions& options) {
     pivots_ = 0;
     DualSimplexRun run(lp, options);
-    if (!lp.A || !run.readBasis(status)) return WarmDualOutcome::NoBasis;
+    if (!lp.A || !lp.A->isCompressed() || !run.readBasis(status)) return WarmDualOutcome::NoBasis;
     const WarmDualOutcome outcome = run.run(*factor_, pivots_);
     if (outcome != WarmDualOutcome::Optimal) return outcome;
     run.readSolution(columnValues_, rowDuals_);

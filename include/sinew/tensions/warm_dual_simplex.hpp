@@ -45,7 +45,8 @@ struct WarmDualSimplexOptions {
 
 enum class WarmDualOutcome {
     Optimal,          // proved optimal: values and duals are set, the status array holds the optimal basis
-    NoBasis,          // the status array is no basis of this problem (sizes, counts, superbasic variables)
+    NoBasis,          // the status array is no basis of this problem (sizes, counts, superbasic variables), or
+                      // A is not compressed
     NotDualFeasible,  // the optimum leaves an unbounded variable at the artificial bound that its reduced
                       // cost sent it to (the basis was not dual feasible, and no real bound mends it)
     DualUnbounded,    // no entering variable: the frame is primal infeasible
