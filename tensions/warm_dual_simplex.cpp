@@ -560,8 +560,9 @@ WarmDualSimplex::~WarmDualSimplex() = default;
 WarmDualOutcome WarmDualSimplex::solve(const LinearProgram& lp, std::vector<unsigned char>& status,
                                        const WarmDualSimplexOptions& options) {
     pivots_ = 0;
+    if (!lp.A || !lp.A->isCompressed()) return WarmDualOutcome::NoBasis;
     DualSimplexRun run(lp, options);
-    if (!lp.A || !lp.A->isCompressed() || !run.readBasis(status)) return WarmDualOutcome::NoBasis;
+    if (!run.readBasis(status)) return WarmDualOutcome::NoBasis;
     const WarmDualOutcome outcome = run.run(*factor_, pivots_);
     if (outcome != WarmDualOutcome::Optimal) return outcome;
     run.readSolution(columnValues_, rowDuals_);
