@@ -225,8 +225,8 @@ struct LpSolver::Backend {
         warmBasis = basis;
         const WarmDualOutcome outcome = warm.solve(lp, warmBasis);
         if (outcome != WarmDualOutcome::Optimal) return outcome;
+        if (movesRowsWhenClamped(problem, warm.getColumnValues())) return WarmDualOutcome::NoBasis;
         result.x = warm.getColumnValues();
-        if (movesRowsWhenClamped(problem, result.x)) return WarmDualOutcome::NoBasis;
         basis.swap(warmBasis);
         result.multipliers = warm.getRowDuals();
         result.iterations = warm.getPivots();
@@ -336,13 +336,10 @@ void LpSolver::solveWithClp(const DistributionProblem& problem, DistributionResu
     Eigen::VectorXd reserve;
     // After an infeasible frame, phase 1 goes first, warm from that frame's: it proves the next of a run of
     // infeasible frames so in fewer pivots than the dual simplex takes to find it out.
-    bool infeasible = backend_->lastInfeasible &&
+    // So does it where the warm path's dual ran unbounded: Clp's dual simplex would find the same.
+    bool infeasible = (backend_->lastInfeasible || warmDualUnbounded) &&
                       solvePhaseOne(problem, backend_->arrays, result.x, reserve, result.iterations, &backend_->phaseOneBasis) &&
                       needsReserves(reserve);
-    // The warm path's dual ran unbounded: phase 1 goes first too, as Clp's dual simplex would find the same.
-    if (!infeasible && warmDualUnbounded)
-        infeasible = solvePhaseOne(problem, backend_->arrays, result.x, reserve, result.iterations, &backend_->phaseOneBasis) &&
-                     needsReserves(reserve);
     int status = 1;
     if (!infeasible) {
         result.x.setZero(columns);

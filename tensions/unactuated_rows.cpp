@@ -27,7 +27,7 @@ void UnactuatedRows::judgeByRigidMotion(const Data& data, const DistributionProb
         virtualLinkMotion_[v].compute(calcJointMotion_G(model_.getJoint(link), data, link, p_ref));
     }
     // Column c of rigidMotion_: the u of the rigid motion along mobility c; one pass over A for all of them.
-    rigidMotion_.setZero();  // the columns past n stay zero, so whole rows can be added
+    rigidMotion_.setZero();  // the columns past the root's mobilities stay zero, so whole rows can be added
     for (int c = 0; c < joint.nu; ++c) {
         rigidMotion_(joint.uStart + c, c) = 1;
         for (std::size_t v = 0; v < virtualLinksOnGround_.size(); ++v) {
