@@ -357,13 +357,19 @@ private:
     }
 
     void requireCoordinate(const Element& owner, const char* property, const std::string& name) {
-        if (!coordinateNames_.count(name))
-            doc_.fail(*osim::findChild(owner, property), "'" + name + "' is no coordinate of the model");
+        if (!coordinateNames_.count(name)) failOnProperty(owner, property, "'" + name + "' is no coordinate of the model");
     }
 
     void requireBody(const Element& owner, const char* property, const std::string& name) {
         if (name != model_.ground.name && !bodyNames_.count(name))
-            doc_.fail(*osim::findChild(owner, property), "'" + name + "' is no body of the model");
+            failOnProperty(owner, property, "'" + name + "' is no body of the model");
+    }
+
+    // The property is absent when the name came out empty, so the error then points at its owner.
+    [[noreturn]] void failOnProperty(const Element& owner, const char* property, const std::string& message) {
+        const Element* child = osim::findChild(owner, property);
+        if (!child) doc_.fail(owner, std::string("missing <") + property + ">");
+        doc_.fail(*child, message);
     }
 
     void readJoint(const Element& element) {

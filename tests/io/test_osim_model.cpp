@@ -460,6 +460,13 @@ TEST(OsimModel, MissingCoordinate) {
                         "<dependent_coordinate_name>", {"'ankle' is no coordinate"}));
 }
 
+// A force element that leaves out the property naming its coordinate or body is refused at the element.
+TEST(OsimModel, ForceWithoutItsCoordinateOrBody) {
+    EXPECT_TRUE(rejects("<coordinate>pin_q</coordinate><upper_limit>", "<upper_limit>", "<CoordinateLimitForce",
+                        {"<CoordinateLimitForce name='limit'>", "missing <coordinate>"}));
+    EXPECT_TRUE(rejects("<bodyA>b</bodyA>", "", "<TorqueActuator", {"<TorqueActuator name='twist'>", "missing <bodyA>"}));
+}
+
 TEST(OsimModel, MissingWrapObject) {
     EXPECT_TRUE(rejects("<wrap_object>cyl", "<wrap_object>cone", "<wrap_object>", {"'cone' is no wrap object"}));
 }
