@@ -81,6 +81,51 @@ TEST(ActiveSetSolver, WarmStartsGiveTheColdAnswer) {
     EXPECT_LT(warmIterations, coldIterations);
 }
 
+// Targets the wires meet within their bounds (Z* = 0), drifting frame to frame: the proximal steps stop at
+// the residual floor (ActiveSetOptions::proximalResidualFloor) from the LP's answer, warm from the last
+// frame, in fewer Newton steps than cold solves; each answer is the last step's optimum (KKT), meets the
+// equality rows and has at most the LP's Z.
+TEST(ActiveSetSolver, ReachableTargetsStopAtTheResidualFloorWarmFromTheLastFrame) {
+    test::RandomProblemOptions o;
+    o.rows = 20, o.wires = 70, o.numFree = 3, o.numEquality = 2, o.duplicateWires = 2;
+    o.tensionLow = 0.1, o.tensionHigh = 0.9, o.noise = 0;
+    const DistributionProblem base = test::makeRandomProblem(o);
+    ActiveSetSolver warm;
+    DistributionResult warmResult, coldResult, lpResult;
+    int warmIterations = 0, coldIterations = 0;
+    for (int frame = 0; frame < 20; ++frame) {
+        DistributionProblem p = base;
+        for (int k = 0; k < p.A.nonZeros(); ++k) p.A.valuePtr()[k] *= 1 + 0.02 * std::sin(0.3 * frame + k);
+        Eigen::VectorXd x = Eigen::VectorXd::Constant(p.getNumVariables(), 0.0);
+        for (int j = 0; j < p.getNumBounded(); ++j) x[j] = p.upper[j] * (0.5 + 0.3 * std::sin(0.1 * frame + j));
+        p.target = p.A * x;
+        warm.solve(p, warmResult);
+        ActiveSetSolver cold;
+        cold.solve(p, coldResult);
+        LpSolver lp;
+        lp.solve(p, lpResult);
+        const std::string name = "frame " + std::to_string(frame);
+        ASSERT_EQ(warmResult.status, DistributionStatus::Optimal) << name;
+        ASSERT_EQ(coldResult.status, DistributionStatus::Optimal) << name;
+        ASSERT_EQ(lpResult.status, DistributionStatus::Optimal) << name;
+        expectWithinBounds(p, warmResult.x, name);
+        EXPECT_LE(warmResult.kkt.getMax(), 1e-6) << name;
+        const double floorResidual = ActiveSetOptions{}.proximalResidualFloor * p.target.cwiseAbs().maxCoeff();
+        const double floorError = 0.5 * (p.getNumRows() - o.numEquality) * floorResidual * floorResidual;
+        EXPECT_LE(warmResult.torqueError, floorError) << name;
+        EXPECT_LE(coldResult.torqueError, floorError) << name;
+        EXPECT_LE(warmResult.torqueError, lpResult.torqueError * (1 + 1e-9)) << name;
+        const Eigen::VectorXd residual = p.target - p.A * warmResult.x;
+        for (int i = 0; i < p.getNumRows(); ++i) {
+            if (p.isEquality[static_cast<std::size_t>(i)]) {
+                EXPECT_LE(std::abs(residual[i]), 1e-6 * p.target.cwiseAbs().maxCoeff()) << name;
+            }
+        }
+        if (frame > 0) warmIterations += warmResult.iterations, coldIterations += coldResult.iterations;
+    }
+    EXPECT_LT(warmIterations, coldIterations);
+}
+
 TEST(ActiveSetSolver, IpoptFallbackGivesTheActiveSetOptimum) {
     // An iteration cap of 1 makes the active set fail on every one of these problems; the frame then goes to
     // Ipopt (in the library), which must land on the optimum the uncapped active set finds.
