@@ -315,7 +315,6 @@ void ActiveSetSolver::solve(const DistributionProblem& problem, DistributionResu
 void ActiveSetSolver::refineProximally(const DistributionProblem& problem, DistributionResult& result) {
     if (options_.proximalSteps <= 0) return;
     const int numBounded = problem.getNumBounded();
-    regularisedY_ = y_;
     center_ = result.x.head(numBounded);
     double centerError = result.torqueError;
     const bool fromLp = options_.proximalFromLp && solveLp(problem) && lpAnswer_.torqueError < centerError;
@@ -324,8 +323,6 @@ void ActiveSetSolver::refineProximally(const DistributionProblem& problem, Distr
         centerError = lpAnswer_.torqueError;
     }
     takeProximalSteps(problem, centerError, fromLp, result);
-    y_ = regularisedY_;
-    hasWarmStart_ = true;
 }
 
 // A frame whose LP answer meets every row to the proximal floor (ActiveSetOptions::proximalResidualFloor)
@@ -337,14 +334,10 @@ bool ActiveSetSolver::startFromLp(const DistributionProblem& problem, Distributi
         lpAnswer_.torqueError > calcProximalFloor(problem))
         return false;
     setUpFrame(problem);  // the steps keep the frame's set-up; the warm start stays the last regularised y
-    regularisedY_ = y_;
     center_ = lpAnswer_.x.head(problem.getNumBounded());
     result.iterations = 0;
     result.usedIpopt = false;
-    const bool taken = takeProximalSteps(problem, lpAnswer_.torqueError, true, result) > 0;
-    y_ = regularisedY_;
-    hasWarmStart_ = true;
-    return taken;
+    return takeProximalSteps(problem, lpAnswer_.torqueError, true, result) > 0;
 }
 
 // The LP's answer (lp_solver.hpp, the problem's band rows and costs), solved at most once a frame: true
@@ -375,19 +368,20 @@ double ActiveSetSolver::calcProximalFloor(const DistributionProblem& problem) co
 // - the first from the LP's answer, a vertex with half the wires on a bound: where the last frame's first
 //   step from the LP ended, as that answer moves little frame to frame (1.5 instead of 4.1 ms a frame on
 //   the whole-body benchmark, whose y = 0 left the step to free those wires);
-// - the others: where the step before ended. A step's y is its answer's residual on the tolerance rows,
-//   and the steps converge to a least-squares answer, whose residual is not zero where Z is not (on the
-//   kick's strike 6 to 25 Newton steps a step instead of 12 to 50).
+// - the others: where the step before ended (y_ as it left it). A step's y is its answer's residual on the
+//   tolerance rows, and the steps converge to a least-squares answer, whose residual is not zero where Z is
+//   not (on the kick's strike 6 to 25 Newton steps a step instead of 12 to 50).
 // Neither the free columns' QR nor the Newton matrix depends on the centre, so the steps keep the frame's
 // set-up (every caller's last solveDual or setUpFrame was of this problem): one QR a frame instead of 6.
+// The y_ they are called with, the regularised one, is put back for the next frame.
 int ActiveSetSolver::takeProximalSteps(const DistributionProblem& problem, double centerError, bool fromLp,
                                        DistributionResult& result) {
     const double floorError = calcProximalFloor(problem);
+    regularisedY_ = y_;
     int taken = 0;
     for (int step = 0; step < options_.proximalSteps; ++step) {
-        if (step > 0) startFrom(y_);
-        else if (fromLp) startFrom(lpStepY_);
-        else y_.setZero();
+        if (step == 0 && fromLp) startFrom(lpStepY_);
+        else if (step == 0) y_.setZero();
         hasWarmStart_ = true;
         solveDual(problem, proximal_, -1, true);
         if (proximal_.status != DistributionStatus::Optimal || !(proximal_.torqueError <= centerError)) break;
@@ -403,6 +397,8 @@ int ActiveSetSolver::takeProximalSteps(const DistributionProblem& problem, doubl
         centerError = result.torqueError;
     }
     center_.setZero();
+    y_ = regularisedY_;
+    hasWarmStart_ = true;
     return taken;
 }
 
