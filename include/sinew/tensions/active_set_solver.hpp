@@ -114,6 +114,8 @@ private:
     int rank_ = 0;  // rank of the free variables' columns G; the dual lives in null(G^T), rows - rank_ wide
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;  // of G_
     Eigen::MatrixXd G_;                 // (numSupportRows_ x numFree) the free columns' non-zero rows, dense
+    Eigen::MatrixXd nullBasis_;         // (numSupportRows_ x numSupportRows_ - rank_) Q's columns spanning null(G^T)
+    Eigen::MatrixXd supportBlock_;      // (numSupportRows_ x numSupportRows_ - rank_) factorize's workspace
     int numSupportRows_ = 0;            // rows some free column reaches
     std::vector<int> rowOrder_;         // (rows) the support rows, then the others
     std::vector<int> rowPosition_;      // (rows) each row's place in rowOrder_
