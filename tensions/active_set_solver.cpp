@@ -22,7 +22,7 @@ bool updateCholesky(Eigen::MatrixXd& L, Eigen::VectorXd& w, double sign) {
     // nonzero a sixth of the way down).
     Eigen::Index k = 0;
     while (k < n && w[k] == 0) ++k;
-    double* wTail = w.data();
+    double* wValues = w.data();
     for (; k < n; ++k) {
         double* column = &L(0, k);
         const double Lkk = column[k];
@@ -33,9 +33,9 @@ bool updateCholesky(Eigen::MatrixXd& L, Eigen::VectorXd& w, double sign) {
         column[k] = r;
         // One pass over the column and w (the update is bound by their memory traffic, not its flops).
         for (Eigen::Index i = k + 1; i < n; ++i) {
-            const double updated = (column[i] + signedS * wTail[i]) * inverseC;
+            const double updated = (column[i] + signedS * wValues[i]) * inverseC;
             column[i] = updated;
-            wTail[i] = c * wTail[i] - s * updated;
+            wValues[i] = c * wValues[i] - s * updated;
         }
     }
     return true;
