@@ -18,6 +18,10 @@ constexpr double kArtificialRange = 1e6;
 // Below this reciprocal condition estimate the basis is left to Clp, which repairs singular bases.
 constexpr double kSmallestReciprocalCondition = 1e-13;
 
+// A dual Devex weight past this resets the reference framework (the weights estimate |e_k^T B^-1|^2 against
+// the basis they started from; after pivots on small elements the estimate is no longer worth its error).
+constexpr double kLargestDevexWeight = 1e8;
+
 }  // namespace
 
 const char* toString(WarmDualOutcome outcome) {
@@ -411,21 +415,26 @@ private:
             const double v = basicValues_[k];
             const double beyond = std::max(lower(j) - v, v - upper(j));
             if (beyond <= tolerance) continue;
+            // The first infeasible row is taken whatever its score: an infeasible basis is never called optimal.
             const double score = beyond * beyond / weights_[k];
-            if (score > best) best = score, leaving = k;
+            if (leaving < 0 || score > best) best = score, leaving = k;
         }
         return leaving;
     }
 
     // Devex's update for a pivot on row p whose entering column, through the basis before the pivot, is
-    // column_.
+    // column_. A small pivot grows the other rows' weights by its ratios squared; past kLargestDevexWeight
+    // (or not finite) the reference framework starts again from the current basis, as Devex does.
     void updateWeights(int p) {
         const double pivot = column_[p], weight = weights_[p];
+        double largest = 0;
         for (int k = 0; k < rows_; ++k) {
             const double ratio = column_[k] / pivot;
             weights_[k] = std::max(weights_[k], ratio * ratio * weight);
+            largest = std::max(largest, weights_[k]);
         }
         weights_[p] = std::max(weight / (pivot * pivot), 1.0);
+        if (!(std::max(largest, weights_[p]) <= kLargestDevexWeight)) weights_.setOnes();
     }
 
     enum class PivotResult { Pivoted, DualUnbounded, LostAccuracy };
