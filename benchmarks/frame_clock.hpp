@@ -1,7 +1,9 @@
 #pragma once
 // Per-frame clocks for the benchmarks that report frame-time statistics besides Google Benchmark's mean.
+#include <algorithm>
 #include <chrono>
 #include <ctime>
+#include <vector>
 
 namespace sinew {
 
@@ -15,6 +17,12 @@ inline double cpuMilliseconds() {
     timespec t{};
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
     return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
+// The median of a run's frame times (of an even count, the upper middle one); `values` not empty.
+inline double medianOf(std::vector<double> values) {
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
+    return values[values.size() / 2];
 }
 
 }  // namespace sinew

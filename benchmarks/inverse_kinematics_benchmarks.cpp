@@ -8,7 +8,9 @@
 // from itself (makeModelBvh: 240 frames at 120 Hz of every ball joint swinging up to 0.3 rad at 1 Hz, the
 // shipped map's 18 joint centres and orientations), each frame warm-started from the last, as `sinew ik
 // MODEL CAPTURE.bvh` runs: always registered. InverseKinematics/whole_body/kick_warm: the same on CMU's kick
-// 11_01.bvh (prepareBvhFit: the model and the map scaled to the subject), when ../shared is present.
+// 11_01.bvh (prepareBvhFit: the model and the map scaled to the subject), when ../shared is present. Both
+// also report cpu_median_ms, the median frame in the thread's CPU time (the time is the mean, which the
+// frames that refresh the curvature raise).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -16,6 +18,8 @@
 #include <iostream>
 
 #include <cmath>
+
+#include "frame_clock.hpp"
 
 #include "sinew/core/kinematics.hpp"
 #include "sinew/io/bvh_map.hpp"
@@ -102,8 +106,11 @@ void timeBvhFrames(benchmark::State& state, const Model& model, const BvhTargets
     solver.solve(frames[0], q);
     std::size_t k = 1;
     double iterations = 0, rms = 0;
+    std::vector<double> frameMs;
     for (auto _ : state) {
+        const double start = cpuMilliseconds();
         const InverseKinematicsReport report = solver.solve(frames[k], q);
+        frameMs.push_back(cpuMilliseconds() - start);
         iterations += report.iterations;
         rms += report.rmsMarkerError;
         k = k + 1 < frames.size() ? k + 1 : 1;
@@ -118,6 +125,7 @@ void timeBvhFrames(benchmark::State& state, const Model& model, const BvhTargets
     state.counters["targets"] = static_cast<double>(tasks.size() + targets.orientationTasks.size());
     state.counters["iterations"] = iterations / static_cast<double>(state.iterations());
     state.counters["rms_m"] = rms / static_cast<double>(state.iterations());
+    state.counters["cpu_median_ms"] = medianOf(frameMs);
 }
 
 const bool kWholeBodyRegistered = [] {

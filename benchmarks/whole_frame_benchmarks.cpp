@@ -10,7 +10,6 @@
 // ik_ms and tensions_ms, the two parts' medians in the thread's CPU time; the model's sizes.
 #include <benchmark/benchmark.h>
 
-#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -70,11 +69,6 @@ const Kick& getKick() {
     return *kick;
 }
 
-double median(std::vector<double> values) {
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
-    return values[values.size() / 2];
-}
-
 void timeWholeFrames(benchmark::State& state, const char* method) {
     const Kick& kick = getKick();
     const Model& model = kick.fit.model;
@@ -111,8 +105,8 @@ void timeWholeFrames(benchmark::State& state, const char* method) {
             analysis.reset();
         }
     }
-    state.counters["ik_ms"] = median(ikMs);
-    state.counters["tensions_ms"] = median(tensionMs);
+    state.counters["ik_ms"] = medianOf(ikMs);
+    state.counters["tensions_ms"] = medianOf(tensionMs);
     state.counters["frames"] = static_cast<double>(frames);
     state.counters["links"] = model.getNumLinks();
     state.counters["dof"] = model.getNumU();
