@@ -125,8 +125,12 @@ InverseKinematicsSolver::InverseKinematicsSolver(const Model& model, std::vector
                     boundedColumns_.push_back({numFree_, joint.qStart + k});
             }
             freeColumn_[static_cast<std::size_t>(u)] = numFree_++;
+            columnLink_.push_back(i);
         }
     }
+    childLinks_.resize(static_cast<std::size_t>(model.getNumLinks()));
+    for (int i = 0; i < model.getNumLinks(); ++i)
+        if (model.getJoint(i).parent != kGround) childLinks_[static_cast<std::size_t>(model.getJoint(i).parent)].push_back(i);
     const Eigen::Index rows = 3 * static_cast<Eigen::Index>(markerTasks_.size()) +
                               static_cast<Eigen::Index>(coordinateTasks_.size()) +
                               3 * static_cast<Eigen::Index>(orientationTasks_.size());
@@ -395,20 +399,23 @@ Eigen::VectorXd InverseKinematicsSolver::solveKkt(double damping, const std::vec
         b[j] = fixedStep[j];
         G.col(j).setZero();
     }
-    Eigen::LLT<Eigen::MatrixXd> cholesky;
     for (double shift = damping;; shift *= 10) {
         for (Eigen::Index j = 0; j < n; ++j) H_(j, j) = fixed[static_cast<std::size_t>(j)] ? 1 : stepHessian_(j, j) + shift;
-        if (cholesky.compute(H_).info() == Eigen::Success) break;
+        if (cholesky_.compute(H_, blockSizes_)) break;
     }
-    const Eigen::VectorXd free = cholesky.solve(b);
+    Eigen::VectorXd free = b;
+    cholesky_.solveInPlace(free);
     if (G.rows() == 0) return free;
     // With H = L L^T and W = L^-1 G^T: S = W^T W, and H^-1 G^T lambda = L^-T (W lambda). One triangular
     // solve with the loops' columns instead of two (H^-1 G^T), which took 11 % of the whole body's steps.
-    const Eigen::MatrixXd W = cholesky.matrixL().solve(G.transpose());
+    Eigen::MatrixXd W = G.transpose();
+    cholesky_.solveLowerInPlace(W);
     Eigen::MatrixXd S = Eigen::MatrixXd::Zero(G.rows(), G.rows());
     addGaussNewtonHessian(S, W, 1);
     multipliers_ = S.completeOrthogonalDecomposition().solve(G * free - e);
-    return free - cholesky.matrixU().solve(W * multipliers_);
+    Eigen::VectorXd correction = W * multipliers_;
+    cholesky_.solveLowerTransposeInPlace(correction);
+    return free - correction;
 }
 
 // The free unknowns that a target or loop observes at the last evaluation (the kick's 120 of 156), with A's
@@ -417,12 +424,115 @@ Eigen::VectorXd InverseKinematicsSolver::solveKkt(double damping, const std::vec
 void InverseKinematicsSolver::gatherObservedColumns() {
     observed_.clear();
     for (Eigen::Index j = 0; j < numFree_; ++j) {
-        const bool seen = isObserved(j);
-        observedIndex_[static_cast<std::size_t>(j)] = seen ? static_cast<Eigen::Index>(observed_.size()) : -1;
-        if (seen) observed_.push_back(j);
+        observedIndex_[static_cast<std::size_t>(j)] = -1;
+        if (isObserved(j)) observed_.push_back(j);
     }
+    orderObservedColumns();
+    for (std::size_t k = 0; k < observed_.size(); ++k)
+        observedIndex_[static_cast<std::size_t>(observed_[k])] = static_cast<Eigen::Index>(k);
     observedA_ = A_(Eigen::all, observed_);
     observedG_ = G_(Eigen::all, observed_);
+}
+
+// Two unknowns are coupled only where a task or loop observes both, that is where one's joint moves the
+// other's link (or a loop joins their subtrees, which the factor checks). So the subtrees hanging off a
+// trunk that holds the tree's root are independent blocks. Which links make the trunk is chosen greedily
+// by the factor's arithmetic: from the root down, a subtree's chain of single children is moved into the
+// trunk, down to the next link that branches, while that lowers it. On the whole body the trunk becomes
+// the pelvis, spine and sternum (63 unknowns), and the legs, arms and head are the blocks (57).
+void InverseKinematicsSolver::orderObservedColumns() {
+    const std::size_t numLinks = childLinks_.size();
+    std::vector<Eigen::Index> count(numLinks, 0);  // observed unknowns in each link's subtree
+    for (const Eigen::Index j : observed_) ++count[static_cast<std::size_t>(columnLink_[static_cast<std::size_t>(j)])];
+    for (std::size_t i = numLinks; i-- > 0;) {
+        const int parent = model_.getJoint(static_cast<int>(i)).parent;
+        if (parent != kGround) count[static_cast<std::size_t>(parent)] += count[i];
+    }
+    auto own = [&](int link) {
+        Eigen::Index n = count[static_cast<std::size_t>(link)];
+        for (int child : childLinks_[static_cast<std::size_t>(link)]) n -= count[static_cast<std::size_t>(child)];
+        return n;
+    };
+    auto observedChildren = [&](int link) {
+        std::vector<int> children;
+        for (int child : childLinks_[static_cast<std::size_t>(link)])
+            if (count[static_cast<std::size_t>(child)] > 0) children.push_back(child);
+        return children;
+    };
+    // Flops of the factor: each block's own, its coupling's triangular solve and trunk update, the trunk's.
+    auto cost = [](Eigen::Index trunk, const std::vector<Eigen::Index>& sizes) {
+        const double t = static_cast<double>(trunk);
+        double flops = t * t * t / 3;
+        for (const Eigen::Index size : sizes) {
+            const double s = static_cast<double>(size);
+            flops += s * s * s / 3 + t * s * s + t * t * s / 2;
+        }
+        return flops;
+    };
+    std::vector<char> inTrunk(numLinks, 0);
+    std::vector<int> roots;  // the blocks' top links
+    for (std::size_t i = 0; i < numLinks; ++i)
+        if (model_.getJoint(static_cast<int>(i)).parent == kGround && count[i] > 0) roots.push_back(static_cast<int>(i));
+    Eigen::Index trunk = 0;
+    auto sizesWithout = [&](std::size_t skipped, const std::vector<int>& added) {
+        std::vector<Eigen::Index> sizes;
+        for (std::size_t b = 0; b < roots.size(); ++b)
+            if (b != skipped) sizes.push_back(count[static_cast<std::size_t>(roots[b])]);
+        for (int link : added) sizes.push_back(count[static_cast<std::size_t>(link)]);
+        return sizes;
+    };
+    for (;;) {
+        double best = cost(trunk, sizesWithout(roots.size(), {}));
+        std::size_t bestRoot = roots.size();
+        for (std::size_t b = 0; b < roots.size(); ++b) {
+            // The chain from the block's top to its first branching link (or its end) joins the trunk.
+            int link = roots[b];
+            Eigen::Index moved = own(link);
+            std::vector<int> children = observedChildren(link);
+            while (children.size() == 1) {
+                link = children.front();
+                moved += own(link);
+                children = observedChildren(link);
+            }
+            const double split = cost(trunk + moved, sizesWithout(b, children));
+            if (split < best) best = split, bestRoot = b;
+        }
+        if (bestRoot == roots.size()) break;
+        int link = roots[bestRoot];
+        roots.erase(roots.begin() + static_cast<std::ptrdiff_t>(bestRoot));
+        for (;;) {
+            inTrunk[static_cast<std::size_t>(link)] = 1;
+            trunk += own(link);
+            const std::vector<int> children = observedChildren(link);
+            if (children.size() != 1) {
+                roots.insert(roots.end(), children.begin(), children.end());
+                break;
+            }
+            link = children.front();
+        }
+    }
+    // Each link's block (its top link), or -1 for the trunk's; parents come before their children.
+    std::vector<int> block(numLinks, -1);
+    for (std::size_t i = 0; i < numLinks; ++i) {
+        if (inTrunk[i]) continue;
+        const int parent = model_.getJoint(static_cast<int>(i)).parent;
+        block[i] = parent == kGround || inTrunk[static_cast<std::size_t>(parent)] ? static_cast<int>(i)
+                                                                                 : block[static_cast<std::size_t>(parent)];
+    }
+    const std::vector<Eigen::Index> byIndex = observed_;
+    observed_.clear();
+    blockSizes_.clear();
+    std::sort(roots.begin(), roots.end());
+    for (const int root : roots) {
+        const std::size_t before = observed_.size();
+        for (const Eigen::Index j : byIndex)
+            if (block[static_cast<std::size_t>(columnLink_[static_cast<std::size_t>(j)])] == root) observed_.push_back(j);
+        blockSizes_.push_back(static_cast<Eigen::Index>(observed_.size() - before));
+    }
+    // The trunk deepest first, its root last: a block then couples to a last stretch of its rows (a leg to
+    // the pelvis's alone), which is all the factor updates.
+    for (auto it = byIndex.rbegin(); it != byIndex.rend(); ++it)
+        if (block[static_cast<std::size_t>(columnLink_[static_cast<std::size_t>(*it)])] < 0) observed_.push_back(*it);
 }
 
 Eigen::VectorXd InverseKinematicsSolver::solveStep(double damping, const Eigen::VectorXd& q) {

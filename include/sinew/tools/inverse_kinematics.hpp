@@ -13,6 +13,7 @@
 #include "sinew/core/data.hpp"
 #include "sinew/core/marker.hpp"
 #include "sinew/core/model.hpp"
+#include "sinew/tools/block_arrow_cholesky.hpp"
 
 namespace sinew {
 
@@ -135,6 +136,9 @@ private:
     void closeLoops(Eigen::VectorXd& q);
     // observed_, observedIndex_, observedA_ and observedG_ at the last evaluation.
     void gatherObservedColumns();
+    // observed_ (the observed unknowns, in index order) reordered into blockSizes_'s independent blocks and
+    // the trunk for cholesky_.
+    void orderObservedColumns();
     // The damped, constrained Gauss-Newton step in the free unknowns from the last evaluation, clamped
     // coordinates kept within their ranges by an active set.
     Eigen::VectorXd solveStep(double damping, const Eigen::VectorXd& q);
@@ -174,6 +178,10 @@ private:
     std::vector<Eigen::Index> loopColumns_;    // the free unknowns the loops move, while closing them
     Eigen::MatrixXd stepHessian_;     // the step's: A^T A + curvature_ (observed x observed)
     Eigen::MatrixXd H_;               // stepHessian_ damped, with the active set's rows fixed
+    std::vector<int> columnLink_;             // per free unknown: the link whose joint it belongs to
+    std::vector<std::vector<int>> childLinks_;  // per link
+    std::vector<Eigen::Index> blockSizes_;    // observed_'s independent subtrees, then the trunk (cholesky_)
+    BlockArrowCholesky cholesky_;             // of H_
     Eigen::VectorXd markerErrors_;
     int markersSeen_ = 0;
     Eigen::VectorXd orientationErrors_;  // rad, per orientation task; NaN where not seen
