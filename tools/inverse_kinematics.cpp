@@ -75,7 +75,8 @@ InverseKinematicsSolver::InverseKinematicsSolver(const Model& model, std::vector
       coordinateTasks_(std::move(coordinateTasks)),
       options_(options),
       orientationTasks_(std::move(orientationTasks)),
-      data_(model) {
+      data_(model),
+      equilibrium_(model) {
     auto checkWeight = [](double weight, const std::string& what) {
         if (!std::isfinite(weight) || weight < 0)
             throw Error(what + ": weight must be finite and >= 0, got " + std::to_string(weight));
@@ -809,24 +810,25 @@ void InverseKinematicsSolver::fillReport(InverseKinematicsReport& report) const 
     report.constraintViolation = c_.size() > 0 ? c_.lpNorm<Eigen::Infinity>() : 0;
 }
 
+const VirtualLinkEquilibriumStatus& InverseKinematicsSolver::balanceVirtualLinks(Eigen::VectorXd& q) {
+    if (equilibrium_.links.empty()) return equilibrium_.status;
+    calcPositionKinematics(model_, data_, q);
+    calcVirtualLinkEquilibriumAtRest(model_, data_, 0, equilibrium_);
+    // The speeds are those of the rest the balance assumes; q's alone are wanted.
+    Eigen::VectorXd speeds = Eigen::VectorXd::Zero(model_.getNumU());
+    getVirtualLinkCoordinates(model_, data_, equilibrium_, q, speeds);
+    return equilibrium_.status;
+}
+
 InverseKinematicsMotion solveInverseKinematics(InverseKinematicsSolver& solver, const Eigen::VectorXd& q0,
                                                const std::vector<InverseKinematicsTargets>& targets,
                                                const std::function<void(int frame, int frames)>& onFrame) {
     InverseKinematicsMotion motion;
     Eigen::VectorXd q = q0;
-    const Model& model = solver.getModel();
-    VirtualLinkEquilibriumData equilibrium(model);
-    Data data(model);
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(model.getNumU());
     const int frames = static_cast<int>(targets.size());
     for (int k = 0; k < frames; ++k) {
         motion.reports.push_back(solver.solve(targets[static_cast<std::size_t>(k)], q));
-        if (!equilibrium.links.empty()) {
-            calcPositionKinematics(model, data, q);
-            calcWirePaths(model, data);
-            calcVirtualLinkEquilibriumAtRest(model, data, 0, equilibrium);
-            getVirtualLinkCoordinates(model, data, equilibrium, q, u);
-        }
+        solver.balanceVirtualLinks(q);
         motion.q.push_back(q);
         if (onFrame) onFrame(k + 1, frames);
     }

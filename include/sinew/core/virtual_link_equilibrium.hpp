@@ -70,7 +70,8 @@ const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibrium(const Model& mode
 
 // The same with every speed zero (the bones at rest), for a pose whose virtual links no one observed (an
 // inverse-kinematics fit, a picture of a motion table): where the wires' force laws hold them at `time`.
-// Needs calcPositionKinematics and calcWirePaths at the pose; fills Data's velocities and wire speeds.
+// Needs calcPositionKinematics at the pose; places the points of the wires through the virtual links itself
+// and fills Data's velocities (zero). The other wires' paths are left as they were.
 const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibriumAtRest(const Model& model, Data& data, double time,
                                                                      VirtualLinkEquilibriumData& eq);
 

@@ -13,6 +13,7 @@
 #include "sinew/core/data.hpp"
 #include "sinew/core/marker.hpp"
 #include "sinew/core/model.hpp"
+#include "sinew/core/virtual_link_equilibrium.hpp"
 #include "sinew/tools/block_arrow_cholesky.hpp"
 
 namespace sinew {
@@ -77,6 +78,10 @@ public:
     // Moves q (nq; in: the warm start, usually the previous frame's solution) to the frame's best fit.
     // Throws sinew::Error when the targets' sizes do not match the tasks or q is not finite.
     InverseKinematicsReport solve(const InverseKinematicsTargets& targets, Eigen::VectorXd& q);
+    // Moves q's virtual links (a forked wire's massless node, which no target sees) to where the wires
+    // through them balance at rest (calcVirtualLinkEquilibriumAtRest under their force laws, zero speeds),
+    // warm-started from q's; nothing for a model without them.
+    const VirtualLinkEquilibriumStatus& balanceVirtualLinks(Eigen::VectorXd& q);
 
     const std::vector<MarkerTask>& getMarkerTasks() const { return markerTasks_; }
     const Model& getModel() const { return model_; }
@@ -182,6 +187,7 @@ private:
     std::vector<std::vector<int>> childLinks_;  // per link
     std::vector<Eigen::Index> blockSizes_;    // observed_'s independent subtrees, then the trunk (cholesky_)
     BlockArrowCholesky cholesky_;             // of H_
+    VirtualLinkEquilibriumData equilibrium_;  // balanceVirtualLinks'
     Eigen::VectorXd markerErrors_;
     int markersSeen_ = 0;
     Eigen::VectorXd orientationErrors_;  // rad, per orientation task; NaN where not seen
