@@ -9,7 +9,7 @@
 // so that L keeps that form (no fill outside it) and the blocks cost their own size, not the whole matrix's.
 // A kinematic tree's Gauss-Newton matrix is one: two unknowns are coupled only where one's joint moves the
 // other's link, so the subtrees hanging off a common trunk (limbs off a spine) are the blocks
-// (docs/inverse-kinematics.md, "Solving"). On the whole body's 120 observed unknowns it takes a third of
+// (docs/inverse-kinematics.md, "The solver"). On the whole body's 120 observed unknowns it takes a third of
 // a dense Cholesky's arithmetic.
 #include <Eigen/Core>
 #include <vector>
