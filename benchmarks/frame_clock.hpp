@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <ctime>
+#include <numeric>
 #include <vector>
 
 namespace sinew {
@@ -23,6 +24,12 @@ inline double cpuMilliseconds() {
 inline double medianOf(std::vector<double> values) {
     std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
     return values[values.size() / 2];
+}
+
+// Their mean, which the few slow frames (a curvature refresh, an infeasible frame's phase 1) raise above the
+// median; `values` not empty.
+inline double meanOf(const std::vector<double>& values) {
+    return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
 }
 
 }  // namespace sinew

@@ -7,7 +7,8 @@
 // subject, the whole capture fitted, the fit's coordinates low-pass filtered at 6 Hz and splined for speeds
 // and accelerations, the contact frames detected. A timed frame's distribution uses that processed frame (a
 // causal pipeline would differentiate its own recent fits; the work per frame is the same). Counters:
-// ik_ms and tensions_ms, the two parts' medians in the thread's CPU time; the model's sizes.
+// ik_ms and tensions_ms, the two parts' medians in the thread's CPU time, ik_mean_ms and tensions_mean_ms
+// their means; the model's sizes.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -107,6 +108,8 @@ void timeWholeFrames(benchmark::State& state, const char* method) {
     }
     state.counters["ik_ms"] = medianOf(ikMs);
     state.counters["tensions_ms"] = medianOf(tensionMs);
+    state.counters["ik_mean_ms"] = meanOf(ikMs);
+    state.counters["tensions_mean_ms"] = meanOf(tensionMs);
     state.counters["frames"] = static_cast<double>(frames);
     state.counters["links"] = model.getNumLinks();
     state.counters["dof"] = model.getNumU();
