@@ -482,35 +482,37 @@ void InverseKinematicsSolver::orderObservedColumns() {
         for (int link : added) sizes.push_back(count[static_cast<std::size_t>(link)]);
         return sizes;
     };
+    // The chain from a block's top down to its first link that branches (or its end), which joins the trunk
+    // as a whole: its links, and the blocks that then hang below it.
+    std::vector<int> chain;
+    auto followChain = [&](int top) {
+        chain.clear();
+        for (int link = top;;) {
+            chain.push_back(link);
+            std::vector<int> children = observedChildren(link);
+            if (children.size() != 1) return children;
+            link = children.front();
+        }
+    };
+    auto countOwn = [&] {
+        Eigen::Index moved = 0;
+        for (const int link : chain) moved += own(link);
+        return moved;
+    };
     for (;;) {
         double best = cost(trunk, sizesWithout(roots.size(), {}));
         std::size_t bestRoot = roots.size();
         for (std::size_t b = 0; b < roots.size(); ++b) {
-            // The chain from the block's top to its first branching link (or its end) joins the trunk.
-            int link = roots[b];
-            Eigen::Index moved = own(link);
-            std::vector<int> children = observedChildren(link);
-            while (children.size() == 1) {
-                link = children.front();
-                moved += own(link);
-                children = observedChildren(link);
-            }
-            const double split = cost(trunk + moved, sizesWithout(b, children));
+            const std::vector<int> below = followChain(roots[b]);
+            const double split = cost(trunk + countOwn(), sizesWithout(b, below));
             if (split < best) best = split, bestRoot = b;
         }
         if (bestRoot == roots.size()) break;
-        int link = roots[bestRoot];
+        const std::vector<int> below = followChain(roots[bestRoot]);
         roots.erase(roots.begin() + static_cast<std::ptrdiff_t>(bestRoot));
-        for (;;) {
-            inTrunk[static_cast<std::size_t>(link)] = 1;
-            trunk += own(link);
-            const std::vector<int> children = observedChildren(link);
-            if (children.size() != 1) {
-                roots.insert(roots.end(), children.begin(), children.end());
-                break;
-            }
-            link = children.front();
-        }
+        roots.insert(roots.end(), below.begin(), below.end());
+        trunk += countOwn();
+        for (const int link : chain) inTrunk[static_cast<std::size_t>(link)] = 1;
     }
     // Each link's block (its top link), or -1 for the trunk's; parents come before their children.
     std::vector<int> block(numLinks, -1);
