@@ -423,12 +423,16 @@ Eigen::VectorXd InverseKinematicsSolver::solveKkt(double damping, const std::vec
 // and G's columns for them. The others are decoupled from the step (no row moves them, so neither does
 // the curvature): the step's algebra runs on the observed ones alone.
 void InverseKinematicsSolver::gatherObservedColumns() {
-    observed_.clear();
+    observedByIndex_.clear();
     for (Eigen::Index j = 0; j < numFree_; ++j) {
         observedIndex_[static_cast<std::size_t>(j)] = -1;
-        if (isObserved(j)) observed_.push_back(j);
+        if (isObserved(j)) observedByIndex_.push_back(j);
     }
-    orderObservedColumns();
+    // The blocks depend on the observed set alone, which changes only where a target comes or goes.
+    if (observedByIndex_ != partitionedFor_) {
+        partitionedFor_ = observedByIndex_;
+        orderObservedColumns();
+    }
     for (std::size_t k = 0; k < observed_.size(); ++k)
         observedIndex_[static_cast<std::size_t>(observed_[k])] = static_cast<Eigen::Index>(k);
     observedA_ = A_(Eigen::all, observed_);
@@ -444,7 +448,7 @@ void InverseKinematicsSolver::gatherObservedColumns() {
 void InverseKinematicsSolver::orderObservedColumns() {
     const std::size_t numLinks = childLinks_.size();
     std::vector<Eigen::Index> count(numLinks, 0);  // observed unknowns in each link's subtree
-    for (const Eigen::Index j : observed_) ++count[static_cast<std::size_t>(columnLink_[static_cast<std::size_t>(j)])];
+    for (const Eigen::Index j : observedByIndex_) ++count[static_cast<std::size_t>(columnLink_[static_cast<std::size_t>(j)])];
     for (std::size_t i = numLinks; i-- > 0;) {
         const int parent = model_.getJoint(static_cast<int>(i)).parent;
         if (parent != kGround) count[static_cast<std::size_t>(parent)] += count[i];
@@ -522,19 +526,18 @@ void InverseKinematicsSolver::orderObservedColumns() {
         block[i] = parent == kGround || inTrunk[static_cast<std::size_t>(parent)] ? static_cast<int>(i)
                                                                                  : block[static_cast<std::size_t>(parent)];
     }
-    const std::vector<Eigen::Index> byIndex = observed_;
     observed_.clear();
     blockSizes_.clear();
     std::sort(roots.begin(), roots.end());
     for (const int root : roots) {
         const std::size_t before = observed_.size();
-        for (const Eigen::Index j : byIndex)
+        for (const Eigen::Index j : observedByIndex_)
             if (block[static_cast<std::size_t>(columnLink_[static_cast<std::size_t>(j)])] == root) observed_.push_back(j);
         blockSizes_.push_back(static_cast<Eigen::Index>(observed_.size() - before));
     }
     // The trunk deepest first, its root last: a block then couples to a last stretch of its rows (a leg to
     // the pelvis's alone), which is all the factor updates.
-    for (auto it = byIndex.rbegin(); it != byIndex.rend(); ++it)
+    for (auto it = observedByIndex_.rbegin(); it != observedByIndex_.rend(); ++it)
         if (block[static_cast<std::size_t>(columnLink_[static_cast<std::size_t>(*it)])] < 0) observed_.push_back(*it);
 }
 

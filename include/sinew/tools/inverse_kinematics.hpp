@@ -141,7 +141,7 @@ private:
     void closeLoops(Eigen::VectorXd& q);
     // observed_, observedIndex_, observedA_ and observedG_ at the last evaluation.
     void gatherObservedColumns();
-    // observed_ (the observed unknowns, in index order) reordered into blockSizes_'s independent blocks and
+    // observed_ and blockSizes_ from observedByIndex_: its unknowns reordered into the independent blocks and
     // the trunk for cholesky_.
     void orderObservedColumns();
     // The damped, constrained Gauss-Newton step in the free unknowns from the last evaluation, clamped
@@ -177,7 +177,9 @@ private:
     Eigen::MatrixXd curvature_;       // the Lagrangian's curvature beyond A^T A where last refreshed
     double curvatureResiduals_ = 0;   // |[r; multipliers]| there
     bool useCurvature_ = true;        // in this solve's steps
-    std::vector<Eigen::Index> observed_;       // the free unknowns a target or loop observes, at the last step
+    std::vector<Eigen::Index> observedByIndex_;  // the free unknowns a target or loop observes, at the last step
+    std::vector<Eigen::Index> partitionedFor_;   // the observedByIndex_ that observed_'s order was made for
+    std::vector<Eigen::Index> observed_;       // observedByIndex_ in cholesky_'s order (orderObservedColumns)
     std::vector<Eigen::Index> observedIndex_;  // per free unknown: its place in observed_, or -1
     Eigen::MatrixXd observedA_, observedG_;    // A_'s and G_'s columns of observed_
     std::vector<Eigen::Index> loopColumns_;    // the free unknowns the loops move, while closing them
