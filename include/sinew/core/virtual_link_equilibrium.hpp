@@ -32,17 +32,24 @@ struct VirtualLinkEquilibriumData {
     explicit VirtualLinkEquilibriumData(const Model& model);
 
     // From the model:
-    std::vector<int> links;        // the virtual links' model indices (nv)
+    std::vector<int> links;        // the virtual links' model indices (nv), group by group
     std::vector<int> wires;        // the wires with at least one point on a virtual link
     std::vector<int> slotOfLink;   // per model link: its position in `links`, or -1 for a real link
     std::vector<std::vector<int>> wiresOfSlot;  // per virtual link: the wires with a point on it (a stiffness column's)
+    // Groups of virtual links that no wire joins to another group's (on the whole body, each forked muscle's
+    // link is a group of its own): a group's residual depends on its own links' poses alone, and the stiffness
+    // is block diagonal by group. `links` is ordered group by group, group g being slots [groupStart[g],
+    // groupStart[g + 1]).
+    std::vector<int> groupStart;
+    std::vector<std::vector<int>> wiresOfGroup;
     // m, per virtual link: RMS distance of its wire points from its origin (1 m when all are at the origin).
     // Rotations are scaled by it (l dtheta, moment / l) so that every unknown is in m and every residual in N.
     std::vector<double> lengthScale;
 
     // Per evaluation (6 nv entries per vector, [rotational; translational] per virtual link, scaled):
     Eigen::VectorXd residual;    // N, [moment about the link origin / l; force], net wire load on each link
-    Eigen::MatrixXd stiffness;   // N/m, K = -d(residual)/d(l dtheta, dp) at frozen wire speeds (6nv x 6nv)
+    // N/m, K = -d(residual)/d(l dtheta, dp) at frozen wire speeds (6nv x 6nv; zero off the groups' blocks)
+    Eigen::MatrixXd stiffness;
     Eigen::VectorXd boneRate;    // N/s, d(residual)/dt from the bones' motion, virtual links held still
     Eigen::VectorXd step, twist;  // Newton step (m), and the virtual links' twist [l w; v] (m/s)
     Eigen::PartialPivLU<Eigen::MatrixXd> factor;  // of the regularised stiffness
