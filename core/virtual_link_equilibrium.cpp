@@ -94,6 +94,16 @@ void measureResidual(const Model& model, const Data& data, const VirtualLinkEqui
     }
 }
 
+// True when the residual of every virtual link in slots [begin, end) is within tolerance of its load.
+bool isWithinTolerance(const Model& model, const Data& data, const VirtualLinkEquilibriumData& eq, int begin, int end) {
+    for (int s = begin; s < end; ++s) {
+        double residual = 0, load = 0;
+        measureResidual(model, data, eq, s, residual, load);
+        if (!(residual <= kResidualTolerance * load)) return false;
+    }
+    return true;
+}
+
 // True when every virtual link's residual is within tolerance of its load; fills the status's measures.
 bool measureStatus(const Model& model, const Data& data, VirtualLinkEquilibriumData& eq) {
     VirtualLinkEquilibriumStatus& status = eq.status;
@@ -207,6 +217,8 @@ VirtualLinkEquilibriumData::VirtualLinkEquilibriumData(const Model& model)
         wiresOfGroup[static_cast<std::size_t>(group)].push_back(w);
     }
     factor = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
+    for (std::size_t g = 0; g + 1 < groupStart.size(); ++g)
+        groupFactor.emplace_back(6 * (groupStart[g + 1] - groupStart[g]));
     tension = Eigen::VectorXd::Zero(model.getNumWires());
     tensionSlope = Eigen::VectorXd::Zero(model.getNumWires());
     segmentDirection.assign(points.size(), Eigen::Vector3d::Zero());
@@ -219,10 +231,11 @@ VirtualLinkEquilibriumData::VirtualLinkEquilibriumData(const Model& model)
 
 namespace {
 
-// Group g's slots and its residual's rows: slots [begin, end), rows [6 begin, 6 end).
+// The slots of groups [first, last) and their residual's rows: slots [begin, end), rows [6 begin, 6 end).
 struct GroupSlots {
-    GroupSlots(const VirtualLinkEquilibriumData& eq, std::size_t g)
-        : begin(eq.groupStart[g]), end(eq.groupStart[g + 1]), row(6 * begin), size(6 * (end - begin)) {}
+    GroupSlots(const VirtualLinkEquilibriumData& eq, std::size_t first, std::size_t last)
+        : begin(eq.groupStart[first]), end(eq.groupStart[last]), row(6 * begin), size(6 * (end - begin)) {}
+    GroupSlots(const VirtualLinkEquilibriumData& eq, std::size_t g) : GroupSlots(eq, g, g + 1) {}
     int begin, end;
     Eigen::Index row, size;
 };
@@ -328,6 +341,101 @@ void calcGroupStiffness(const Model& model, const Data& data, VirtualLinkEquilib
                                eq.boneRate.segment(group.row, group.size));
 }
 
+// The damped Newton iteration on the virtual links of groups [first, last) together, their stiffness
+// factorised by `factor`; returns the iterations that lowered the residual.
+int balanceGroups(const Model& model, Data& data, double time, VirtualLinkEquilibriumData& eq, std::size_t first,
+                  std::size_t last, Eigen::PartialPivLU<Eigen::MatrixXd>& factor) {
+    const GroupSlots slots(eq, first, last);
+    auto residual = eq.residual.segment(slots.row, slots.size);
+    auto stiffness = eq.stiffness.block(slots.row, slots.row, slots.size, slots.size);
+    auto step = eq.step.segment(slots.row, slots.size);
+    auto twist = eq.twist.segment(slots.row, slots.size);
+    auto setTwist = [&]() {
+        for (int s = slots.begin; s < slots.end; ++s) {
+            const std::size_t v = static_cast<std::size_t>(eq.links[static_cast<std::size_t>(s)]);
+            data.w_GB[v] = eq.twist.segment<3>(6 * s) / eq.lengthScale[static_cast<std::size_t>(s)];
+            data.v_GB[v] = eq.twist.segment<3>(6 * s + 3);
+        }
+    };
+    const auto calcResidual = [&]() {
+        for (std::size_t g = first; g < last; ++g) calcGroupResidual(model, data, time, eq, g);
+    };
+    int iterations = 0;
+    std::size_t lastRejected = first;  // the group whose trial residual refused the last rejected step
+    calcResidual();
+    double norm = residual.lpNorm<Eigen::Infinity>();
+    for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+        for (std::size_t g = first; g < last; ++g) calcGroupStiffness(model, data, eq, g);
+        // A small multiple of the identity keeps the solve defined where K is singular: a slack link (K and
+        // residual zero: it stays put) or one whose wires all meet at one point (no rotational stiffness).
+        const double regularisation = kRegularisation * stiffness.lpNorm<Eigen::Infinity>();
+        if (regularisation == 0) {  // every wire through these virtual links is slack
+            twist.setZero();
+            setTwist();
+            break;
+        }
+        stiffness.diagonal().array() += regularisation;
+        factor.compute(stiffness);
+        // The quasi-static twist: d(residual)/dt = -K twist + boneRate = 0.
+        step.noalias() = factor.solve(eq.boneRate.segment(slots.row, slots.size));
+        if (!step.allFinite()) break;
+        const double twistChange = (step - twist).lpNorm<Eigen::Infinity>();
+        const bool twistSettled = twistChange <= kTwistTolerance * step.lpNorm<Eigen::Infinity>();
+        if (twistChange > 0) {
+            twist = step;
+            setTwist();
+            calcResidual();
+            norm = residual.lpNorm<Eigen::Infinity>();
+        }
+        if (twistSettled && isWithinTolerance(model, data, eq, slots.begin, slots.end)) break;
+        // Newton: residual(x + step) ~ residual - K step = 0, then halved until the residual decreases.
+        step.noalias() = factor.solve(residual);
+        if (!step.allFinite()) break;
+        for (int s = slots.begin; s < slots.end; ++s) {
+            const std::size_t ss = static_cast<std::size_t>(s);
+            eq.R_GV0[ss] = data.R_GB[static_cast<std::size_t>(eq.links[ss])];
+            eq.p_GV0[ss] = data.p_GB[static_cast<std::size_t>(eq.links[ss])];
+        }
+        double alpha = 1;
+        bool decreased = false;
+        for (int halving = 0; halving <= kMaxHalvings && !decreased; ++halving, alpha /= 2) {
+            for (int s = slots.begin; s < slots.end; ++s) displacePose(data, eq, static_cast<std::size_t>(s), alpha);
+            // The step is refused as soon as one group's residual is no smaller, so the group that refused
+            // the last one goes first: where one link crawls at a slack wire's kink the others' wires are not
+            // made again for each trial.
+            double trial = 0;
+            for (std::size_t k = 0; k < last - first && trial < norm; ++k) {
+                const std::size_t g = first + (lastRejected - first + k) % (last - first);
+                calcGroupResidual(model, data, time, eq, g);
+                const GroupSlots group(eq, g);
+                const double groupTrial = eq.residual.segment(group.row, group.size).lpNorm<Eigen::Infinity>();
+                if (!(groupTrial < norm)) {
+                    trial = groupTrial;
+                    lastRejected = g;
+                }
+            }
+            decreased = trial < norm;
+            if (decreased) norm = residual.lpNorm<Eigen::Infinity>();
+        }
+        if (decreased) ++iterations;
+        if (!decreased) {  // stalled (at roundoff, or a kink of a law): back to the best pose
+            for (int s = slots.begin; s < slots.end; ++s) displacePose(data, eq, static_cast<std::size_t>(s), 0.0);
+            calcResidual();
+            break;
+        }
+    }
+    return iterations;
+}
+
+// The twist the solve starts from: the virtual links' in `data`, scaled.
+void readTwist(const Data& data, VirtualLinkEquilibriumData& eq) {
+    for (std::size_t s = 0; s < eq.links.size(); ++s) {
+        const std::size_t v = static_cast<std::size_t>(eq.links[s]);
+        eq.twist.segment<3>(6 * static_cast<Eigen::Index>(s)) = eq.lengthScale[s] * data.w_GB[v];
+        eq.twist.segment<3>(6 * static_cast<Eigen::Index>(s) + 3) = data.v_GB[v];
+    }
+}
+
 }  // namespace
 
 void calcVirtualLinkResidual(const Model& model, Data& data, double time, VirtualLinkEquilibriumData& eq) {
@@ -343,87 +451,11 @@ const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibrium(const Model& mode
                                                                VirtualLinkEquilibriumData& eq) {
     eq.status = VirtualLinkEquilibriumStatus{};
     if (eq.links.empty()) return eq.status;
-    const std::size_t nv = eq.links.size();
-    auto setTwist = [&]() {
-        for (std::size_t s = 0; s < nv; ++s) {
-            const std::size_t v = static_cast<std::size_t>(eq.links[s]);
-            data.w_GB[v] = eq.twist.segment<3>(6 * static_cast<Eigen::Index>(s)) / eq.lengthScale[s];
-            data.v_GB[v] = eq.twist.segment<3>(6 * static_cast<Eigen::Index>(s) + 3);
-        }
-    };
-    for (std::size_t s = 0; s < nv; ++s) {
-        const std::size_t v = static_cast<std::size_t>(eq.links[s]);
-        eq.twist.segment<3>(6 * static_cast<Eigen::Index>(s)) = eq.lengthScale[s] * data.w_GB[v];
-        eq.twist.segment<3>(6 * static_cast<Eigen::Index>(s) + 3) = data.v_GB[v];
-    }
-    const std::size_t groups = eq.wiresOfGroup.size();
-    std::size_t lastRejected = 0;  // the group whose trial residual refused the last rejected step
-    calcVirtualLinkResidual(model, data, time, eq);
-    double norm = eq.residual.lpNorm<Eigen::Infinity>();
-    for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
-        calcVirtualLinkStiffness(model, data, eq);
-        // A small multiple of the identity keeps the solve defined where K is singular: a slack link (K and
-        // residual zero: it stays put) or one whose wires all meet at one point (no rotational stiffness).
-        const double regularisation = kRegularisation * eq.stiffness.lpNorm<Eigen::Infinity>();
-        if (regularisation == 0) {  // every wire through every virtual link is slack
-            eq.twist.setZero();
-            setTwist();
-            break;
-        }
-        eq.stiffness.diagonal().array() += regularisation;
-        // Factorised whole although block diagonal by group: block by block changed its roundoff enough to
-        // move stalled solves of the random models apart in the two engines (udot 7e-3 against 5e-13 apart).
-        eq.factor.compute(eq.stiffness);
-        // The quasi-static twist: d(residual)/dt = -K twist + boneRate = 0.
-        eq.step.noalias() = eq.factor.solve(eq.boneRate);
-        if (!eq.step.allFinite()) break;
-        const double twistChange = (eq.step - eq.twist).lpNorm<Eigen::Infinity>();
-        const bool twistSettled = twistChange <= kTwistTolerance * eq.step.lpNorm<Eigen::Infinity>();
-        if (twistChange > 0) {
-            eq.twist = eq.step;
-            setTwist();
-            calcVirtualLinkResidual(model, data, time, eq);
-            norm = eq.residual.lpNorm<Eigen::Infinity>();
-        }
-        if (twistSettled && measureStatus(model, data, eq)) {
-            eq.status.converged = true;
-            return eq.status;
-        }
-        // Newton: residual(x + step) ~ residual - K step = 0, then halved until the residual decreases.
-        eq.step.noalias() = eq.factor.solve(eq.residual);
-        if (!eq.step.allFinite()) break;
-        for (std::size_t s = 0; s < nv; ++s) {
-            eq.R_GV0[s] = data.R_GB[static_cast<std::size_t>(eq.links[s])];
-            eq.p_GV0[s] = data.p_GB[static_cast<std::size_t>(eq.links[s])];
-        }
-        double alpha = 1;
-        bool decreased = false;
-        for (int halving = 0; halving <= kMaxHalvings && !decreased; ++halving, alpha /= 2) {
-            for (std::size_t s = 0; s < nv; ++s) displacePose(data, eq, s, alpha);
-            // The step is refused as soon as one group's residual is no smaller, so the group that refused
-            // the last one goes first: where one link crawls at a slack wire's kink (62 of 1,399 balances of
-            // the kick, most of their residuals' cost) the others' wires are not made again for each trial.
-            double trial = 0;
-            for (std::size_t k = 0; k < groups && trial < norm; ++k) {
-                const std::size_t g = (lastRejected + k) % groups;
-                calcGroupResidual(model, data, time, eq, g);
-                const GroupSlots group(eq, g);
-                const double groupTrial = eq.residual.segment(group.row, group.size).lpNorm<Eigen::Infinity>();
-                if (!(groupTrial < norm)) {
-                    trial = groupTrial;
-                    lastRejected = g;
-                }
-            }
-            decreased = trial < norm;
-            if (decreased) norm = eq.residual.lpNorm<Eigen::Infinity>();
-        }
-        if (decreased) ++eq.status.iterations;
-        if (!decreased) {  // stalled (at roundoff, or a kink of a law): back to the best pose
-            for (std::size_t s = 0; s < nv; ++s) displacePose(data, eq, s, 0.0);
-            calcVirtualLinkResidual(model, data, time, eq);
-            break;
-        }
-    }
+    readTwist(data, eq);
+    // In motion every group is solved together, with one line search: K leaves out how the wires' speeds
+    // change with the pose, and where a damped wire goes taut solved apart stalled where solved together did
+    // not (a random model's taut forks: 30 N left on one link).
+    eq.status.iterations = balanceGroups(model, data, time, eq, 0, eq.wiresOfGroup.size(), eq.factor);
     eq.status.converged = measureStatus(model, data, eq);
     return eq.status;
 }
@@ -464,7 +496,15 @@ const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibriumAtRest(const Model
             data.v_GP[kk].setZero();
         }
     }
-    return calcVirtualLinkEquilibrium(model, data, time, eq);
+    eq.status = VirtualLinkEquilibriumStatus{};
+    if (eq.links.empty()) return eq.status;
+    readTwist(data, eq);
+    // At rest K is the residual's exact derivative: each group is solved on its own, so that one crawling at
+    // a slack wire's kink neither holds the others to its line search nor pays for their stiffness.
+    for (std::size_t g = 0; g < eq.wiresOfGroup.size(); ++g)
+        eq.status.iterations = std::max(eq.status.iterations, balanceGroups(model, data, time, eq, g, g + 1, eq.groupFactor[g]));
+    eq.status.converged = measureStatus(model, data, eq);
+    return eq.status;
 }
 
 }  // namespace sinew

@@ -53,6 +53,7 @@ struct VirtualLinkEquilibriumData {
     Eigen::VectorXd boneRate;    // N/s, d(residual)/dt from the bones' motion, virtual links held still
     Eigen::VectorXd step, twist;  // Newton step (m), and the virtual links' twist [l w; v] (m/s)
     Eigen::PartialPivLU<Eigen::MatrixXd> factor;  // of the regularised stiffness
+    std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> groupFactor;  // of each group's block, for a solve at rest
     Eigen::VectorXd tension;       // N, per model wire (entries of `wires` only)
     Eigen::VectorXd tensionSlope;  // N/m, d(tension)/d(length) at fixed speed, per model wire (ditto)
     // Per model wire point (entries of `wires` only): the segment leaving the point (unit vector, length m),
@@ -78,7 +79,8 @@ const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibrium(const Model& mode
 // The same with every speed zero (the bones at rest), for a pose whose virtual links no one observed (an
 // inverse-kinematics fit, a picture of a motion table): where the wires' force laws hold them at `time`.
 // Needs calcPositionKinematics at the pose; places the points of the wires through the virtual links itself
-// and fills Data's velocities (zero). The other wires' paths are left as they were.
+// and fills Data's velocities (zero). The other wires' paths are left as they were. Each group of virtual
+// links (VirtualLinkEquilibriumData::groupStart) is solved on its own; status.iterations is the most a group took.
 const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibriumAtRest(const Model& model, Data& data, double time,
                                                                      VirtualLinkEquilibriumData& eq);
 
