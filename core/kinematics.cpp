@@ -133,9 +133,8 @@ void addToParent(const Model& model, Data& data, int link) {
     data.scratchF_G[p] += shiftForce(data.scratchF_G[b], data.p_GB[p] - data.p_GB[b]);
 }
 
-Eigen::VectorXd integrateCoordinates(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& u,
-                                     double dt) {
-    Eigen::VectorXd result = q;
+void integrateJointCoordinates(const Joint& joint, const Eigen::VectorXd& q, const Eigen::VectorXd& u, double dt,
+                               Eigen::VectorXd& result) {
     auto rotate = [&](int qStart, const Eigen::Vector3d& w_F) {
         const Eigen::Vector3d rotation = w_F * dt;
         const double angle = rotation.norm();
@@ -145,18 +144,24 @@ Eigen::VectorXd integrateCoordinates(const Model& model, const Eigen::VectorXd& 
         const Eigen::Quaterniond next = (delta * readQuaternion(q, qStart)).normalized();
         result.segment<4>(qStart) << next.w(), next.x(), next.y(), next.z();
     };
-    for (const Joint& joint : model.getJoints()) {
-        switch (joint.type) {
-            case JointType::Free:
-                rotate(joint.qStart, u.segment<3>(joint.uStart));
-                result.segment<3>(joint.qStart + 4) += dt * u.segment<3>(joint.uStart + 3);
-                break;
-            case JointType::Ball: rotate(joint.qStart, u.segment<3>(joint.uStart)); break;
-            case JointType::Pin: result[joint.qStart] += dt * u[joint.uStart]; break;
-            case JointType::Weld: break;
-            case JointType::Custom: result.segment(joint.qStart, joint.nq) += dt * u.segment(joint.uStart, joint.nu); break;
-        }
+    switch (joint.type) {
+        case JointType::Free:
+            rotate(joint.qStart, u.segment<3>(joint.uStart));
+            result.segment<3>(joint.qStart + 4) = q.segment<3>(joint.qStart + 4) + dt * u.segment<3>(joint.uStart + 3);
+            break;
+        case JointType::Ball: rotate(joint.qStart, u.segment<3>(joint.uStart)); break;
+        case JointType::Pin: result[joint.qStart] = q[joint.qStart] + dt * u[joint.uStart]; break;
+        case JointType::Weld: break;
+        case JointType::Custom:
+            result.segment(joint.qStart, joint.nq) = q.segment(joint.qStart, joint.nq) + dt * u.segment(joint.uStart, joint.nu);
+            break;
     }
+}
+
+Eigen::VectorXd integrateCoordinates(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& u,
+                                     double dt) {
+    Eigen::VectorXd result = q;
+    for (const Joint& joint : model.getJoints()) integrateJointCoordinates(joint, q, u, dt, result);
     return result;
 }
 

@@ -747,9 +747,11 @@ void InverseKinematicsSolver::refreshCurvature(const InverseKinematicsTargets& t
         // Only u's joint stepped: integrateCoordinates renormalises every quaternion, which would move
         // every link by roundoff.
         const Joint& stepped = model_.getJoint(jointOfU_[static_cast<std::size_t>(u)]);
-        Eigen::VectorXd plus = q;
-        plus.segment(stepped.qStart, stepped.nq) = integrateCoordinates(model_, q, Eigen::VectorXd::Unit(model_.getNumU(), u) * h, 1.0)
-                                                       .segment(stepped.qStart, stepped.nq);
+        Eigen::VectorXd& plus = curvaturePose_;
+        plus = q;
+        curvatureSpeed_.setZero(model_.getNumU());
+        curvatureSpeed_[u] = h;
+        integrateJointCoordinates(stepped, q, curvatureSpeed_, 1.0, plus);
         applyCoordinateCouplers(model_, plus);
         calcPositionKinematics(model_, data_, plus);
         for (int i = 0; i < model_.getNumLinks(); ++i) {

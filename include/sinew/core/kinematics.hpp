@@ -46,4 +46,8 @@ void addToParent(const Model& model, Data& data, int link);
 Eigen::VectorXd integrateCoordinates(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& u,
                                      double dt);
 
+// The same for one joint: its entries of `result` (nq) become its entries of q advanced along u for dt.
+void integrateJointCoordinates(const Joint& joint, const Eigen::VectorXd& q, const Eigen::VectorXd& u, double dt,
+                               Eigen::VectorXd& result);
+
 }  // namespace sinew

@@ -176,6 +176,7 @@ private:
     std::vector<int> loopChainLinks_;  // those whose joints move a loop
     Eigen::MatrixXd curvature_;       // the Lagrangian's curvature beyond A^T A where last refreshed
     double curvatureResiduals_ = 0;   // |[r; multipliers]| there
+    Eigen::VectorXd curvaturePose_, curvatureSpeed_;  // refreshCurvature's stepped pose and unit step
     bool useCurvature_ = true;        // in this solve's steps
     std::vector<Eigen::Index> observedByIndex_;  // the free unknowns a target or loop observes, at the last step
     std::vector<Eigen::Index> partitionedFor_;   // the observedByIndex_ that observed_'s order was made for
