@@ -367,16 +367,16 @@ void InverseKinematicsSolver::closeLoops(Eigen::VectorXd& q) {
         loopColumns_.clear();
         for (Eigen::Index j = 0; j < numFree_; ++j)
             if (!G_.col(j).isZero(0)) loopColumns_.push_back(j);
-        loopDelta_.setZero(numFree_);
+        Eigen::VectorXd delta = Eigen::VectorXd::Zero(numFree_);
         // G+ = G^T (G G^T)+: the minimum-norm step through the loops' few rows (12 x 12 on the whole body)
         // rather than a decomposition of all the chains' columns (90); a direction the loops repeat, or
         // nearly, is left alone rather than stepped along by its tiny singular value.
-        loopChainG_ = G_(Eigen::all, loopColumns_);
-        loopGGt_.setZero(loopChainG_.rows(), loopChainG_.rows());
-        addGaussNewtonHessian(loopGGt_, loopChainG_.transpose(), 1);
-        loopDecomposition_.compute(loopGGt_);
-        loopDelta_(loopColumns_) = loopChainG_.transpose() * loopDecomposition_.solve(-c_);
-        q = integrateCoordinates(model_, q, toSpeeds(loopDelta_), 1.0);
+        const Eigen::MatrixXd chainG = G_(Eigen::all, loopColumns_);
+        Eigen::MatrixXd GGt = Eigen::MatrixXd::Zero(chainG.rows(), chainG.rows());
+        addGaussNewtonHessian(GGt, chainG.transpose(), 1);
+        const Eigen::VectorXd chainStep = chainG.transpose() * GGt.completeOrthogonalDecomposition().solve(-c_);
+        delta(loopColumns_) = chainStep;
+        q = integrateCoordinates(model_, q, toSpeeds(delta), 1.0);
         applyCoordinateCouplers(model_, q);
     }
 }
@@ -389,12 +389,8 @@ Eigen::VectorXd InverseKinematicsSolver::solveKkt(double damping, const std::vec
                                                   const Eigen::VectorXd& fixedStep) {
     const Eigen::Index n = stepHessian_.rows();
     H_ = stepHessian_;
-    Eigen::VectorXd& b = kktRhs_;
-    Eigen::VectorXd& e = kktGapRhs_;
-    Eigen::MatrixXd& G = kktG_;
-    b.noalias() = -(observedA_.transpose() * r_);
-    e = -c_;
-    G = observedG_;
+    Eigen::VectorXd b = -(observedA_.transpose() * r_), e = -c_;
+    Eigen::MatrixXd G = observedG_;
     for (Eigen::Index j = 0; j < n; ++j) {
         if (!fixed[static_cast<std::size_t>(j)]) continue;
         b -= H_.col(j) * fixedStep[j];
@@ -413,13 +409,11 @@ Eigen::VectorXd InverseKinematicsSolver::solveKkt(double damping, const std::vec
     if (G.rows() == 0) return free;
     // With H = L L^T and W = L^-1 G^T: S = W^T W, and H^-1 G^T lambda = L^-T (W lambda). One triangular
     // solve with the loops' columns instead of two (H^-1 G^T), which took 11 % of the whole body's steps.
-    Eigen::MatrixXd& W = kktW_;
-    W = G.transpose();
+    Eigen::MatrixXd W = G.transpose();
     cholesky_.solveLowerInPlace(W);
-    kktS_.setZero(G.rows(), G.rows());
-    addGaussNewtonHessian(kktS_, W, 1);
-    kktDecomposition_.compute(kktS_);
-    multipliers_ = kktDecomposition_.solve(G * free - e);
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(G.rows(), G.rows());
+    addGaussNewtonHessian(S, W, 1);
+    multipliers_ = S.completeOrthogonalDecomposition().solve(G * free - e);
     Eigen::VectorXd correction = W * multipliers_;
     cholesky_.solveLowerTransposeInPlace(correction);
     return free - correction;

@@ -5,7 +5,6 @@
 // on the configuration manifold (ball and free joints through their quaternions), warm-started from the
 // previous frame, so that coordinates no task observes stay where they were. docs/inverse-kinematics.md.
 #include <Eigen/Core>
-#include <Eigen/QR>
 #include <functional>
 #include <string>
 #include <utility>
@@ -187,10 +186,6 @@ private:
     std::vector<Eigen::Index> loopColumns_;    // the free unknowns the loops move, while closing them
     Eigen::MatrixXd stepHessian_;     // the step's: A^T A + curvature_ (observed x observed)
     Eigen::MatrixXd H_;               // stepHessian_ damped, with the active set's rows fixed
-    // solveKkt's and closeLoops' workspaces, kept so that a step allocates little.
-    Eigen::VectorXd kktRhs_, kktGapRhs_, loopDelta_;
-    Eigen::MatrixXd kktG_, kktW_, kktS_, loopChainG_, loopGGt_;
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> kktDecomposition_, loopDecomposition_;
     std::vector<int> columnLink_;             // per free unknown: the link whose joint it belongs to
     std::vector<std::vector<int>> childLinks_;  // per link
     std::vector<Eigen::Index> blockSizes_;    // observed_'s independent subtrees, then the trunk (cholesky_)
