@@ -436,6 +436,24 @@ void readTwist(const Data& data, VirtualLinkEquilibriumData& eq) {
     }
 }
 
+// Both entry points' solve, from the twist in `data`: every group together (in motion), or each group on its
+// own (at rest); then the status.
+const VirtualLinkEquilibriumStatus& solveEquilibrium(const Model& model, Data& data, double time,
+                                                     VirtualLinkEquilibriumData& eq, bool groupsApart) {
+    eq.status = VirtualLinkEquilibriumStatus{};
+    if (eq.links.empty()) return eq.status;
+    readTwist(data, eq);
+    if (groupsApart) {
+        for (std::size_t g = 0; g < eq.wiresOfGroup.size(); ++g)
+            eq.status.iterations =
+                std::max(eq.status.iterations, balanceGroups(model, data, time, eq, g, g + 1, eq.groupFactor[g]));
+    } else {
+        eq.status.iterations = balanceGroups(model, data, time, eq, 0, eq.wiresOfGroup.size(), eq.factor);
+    }
+    eq.status.converged = measureStatus(model, data, eq);
+    return eq.status;
+}
+
 }  // namespace
 
 void calcVirtualLinkResidual(const Model& model, Data& data, double time, VirtualLinkEquilibriumData& eq) {
@@ -449,15 +467,10 @@ void calcVirtualLinkStiffness(const Model& model, const Data& data, VirtualLinkE
 
 const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibrium(const Model& model, Data& data, double time,
                                                                VirtualLinkEquilibriumData& eq) {
-    eq.status = VirtualLinkEquilibriumStatus{};
-    if (eq.links.empty()) return eq.status;
-    readTwist(data, eq);
     // In motion every group is solved together, with one line search: K leaves out how the wires' speeds
     // change with the pose, and where a damped wire goes taut solved apart stalled where solved together did
     // not (a random model's taut forks: 30 N left on one link).
-    eq.status.iterations = balanceGroups(model, data, time, eq, 0, eq.wiresOfGroup.size(), eq.factor);
-    eq.status.converged = measureStatus(model, data, eq);
-    return eq.status;
+    return solveEquilibrium(model, data, time, eq, false);
 }
 
 void getVirtualLinkCoordinates(const Model& model, const Data& data, const VirtualLinkEquilibriumData& eq,
@@ -496,15 +509,9 @@ const VirtualLinkEquilibriumStatus& calcVirtualLinkEquilibriumAtRest(const Model
             data.v_GP[kk].setZero();
         }
     }
-    eq.status = VirtualLinkEquilibriumStatus{};
-    if (eq.links.empty()) return eq.status;
-    readTwist(data, eq);
     // At rest K is the residual's exact derivative: each group is solved on its own, so that one crawling at
     // a slack wire's kink neither holds the others to its line search nor pays for their stiffness.
-    for (std::size_t g = 0; g < eq.wiresOfGroup.size(); ++g)
-        eq.status.iterations = std::max(eq.status.iterations, balanceGroups(model, data, time, eq, g, g + 1, eq.groupFactor[g]));
-    eq.status.converged = measureStatus(model, data, eq);
-    return eq.status;
+    return solveEquilibrium(model, data, time, eq, true);
 }
 
 }  // namespace sinew
