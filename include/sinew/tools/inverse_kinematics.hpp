@@ -145,10 +145,11 @@ private:
     // the trunk for cholesky_.
     void orderObservedColumns();
     // The damped, constrained Gauss-Newton step in the free unknowns from the last evaluation, clamped
-    // coordinates kept within their ranges by an active set.
-    Eigen::VectorXd solveStep(double damping, const Eigen::VectorXd& q);
+    // coordinates kept within their ranges by an active set. damping is raised to what the step's Hessian
+    // needed to be positive definite.
+    Eigen::VectorXd solveStep(double& damping, const Eigen::VectorXd& q);
     // One pass of it over the observed unknowns, the entries `fixed` held at fixedStep.
-    Eigen::VectorXd solveKkt(double damping, const std::vector<bool>& fixed, const Eigen::VectorXd& fixedStep);
+    Eigen::VectorXd solveKkt(double& damping, const std::vector<bool>& fixed, const Eigen::VectorXd& fixedStep);
 
     const Model& model_;
     std::vector<Marker> markers_;
