@@ -22,6 +22,15 @@ bool factorDense(Eigen::Ref<Eigen::MatrixXd> A) {
     return true;
 }
 
+// Rows of X that are zero in every column before the first that is not: a forward substitution leaves them
+// zero, so the solve starts below them (the loops' columns G^T are zero outside their chains: in the
+// whole body's legs and head, and down the trunk to the ribs and the sternum).
+Eigen::Index countLeadingZeroRows(const Eigen::Ref<const Eigen::MatrixXd>& X) {
+    Eigen::Index k = 0;
+    while (k < X.rows() && X.row(k).isZero(0)) ++k;
+    return k;
+}
+
 }  // namespace
 
 bool BlockArrowCholesky::couplesTwoBlocks() const {
@@ -60,11 +69,14 @@ void BlockArrowCholesky::solveLowerInPlace(Eigen::Ref<Eigen::MatrixXd> X) const 
     const Eigen::Index trunk = blockStart_.back(), t = L_.rows() - trunk;
     for (std::size_t i = 0; i + 1 < blockStart_.size(); ++i) {
         const Eigen::Index first = blockStart_[i], size = blockStart_[i + 1] - first, r0 = couplingStart_[i];
-        auto Xi = X.middleRows(first, size);
-        L_.block(first, first, size, size).triangularView<Eigen::Lower>().solveInPlace(Xi);
-        X.middleRows(trunk + r0, t - r0).noalias() -= L_.block(trunk + r0, first, t - r0, size) * Xi;
+        const Eigen::Index k = countLeadingZeroRows(X.middleRows(first, size));
+        if (k == size) continue;
+        auto Xi = X.middleRows(first + k, size - k);
+        L_.block(first + k, first + k, size - k, size - k).triangularView<Eigen::Lower>().solveInPlace(Xi);
+        X.middleRows(trunk + r0, t - r0).noalias() -= L_.block(trunk + r0, first + k, t - r0, size - k) * Xi;
     }
-    L_.bottomRightCorner(t, t).triangularView<Eigen::Lower>().solveInPlace(X.bottomRows(t));
+    const Eigen::Index k = countLeadingZeroRows(X.bottomRows(t));
+    L_.bottomRightCorner(t - k, t - k).triangularView<Eigen::Lower>().solveInPlace(X.bottomRows(t - k));
 }
 
 void BlockArrowCholesky::solveLowerTransposeInPlace(Eigen::Ref<Eigen::MatrixXd> X) const {
