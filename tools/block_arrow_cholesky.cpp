@@ -22,9 +22,9 @@ bool factorDense(Eigen::Ref<Eigen::MatrixXd> A) {
     return true;
 }
 
-// Rows of X that are zero in every column before the first that is not: a forward substitution leaves them
-// zero, so the solve starts below them (the loops' columns G^T are zero outside their chains: in the
-// whole body's legs and head, and down the trunk to the ribs and the sternum).
+// Rows of X that are zero in every column before the first that is not: where a block's coupling to the
+// trunk starts, and where a forward substitution may start (it leaves those rows zero; the loops' columns
+// G^T are zero outside their chains: in the whole body's legs and head, and down the trunk to the ribs).
 Eigen::Index countLeadingZeroRows(const Eigen::Ref<const Eigen::MatrixXd>& X) {
     Eigen::Index k = 0;
     while (k < X.rows() && X.row(k).isZero(0)) ++k;
@@ -55,8 +55,7 @@ bool BlockArrowCholesky::compute(const Eigen::MatrixXd& H, const std::vector<Eig
         const Eigen::Index first = blockStart_[i], size = blockStart_[i + 1] - first;
         auto D = L_.block(first, first, size, size);
         if (!factorDense(D)) return false;
-        Eigen::Index r0 = 0;
-        while (r0 < t && L_.row(trunk + r0).segment(first, size).isZero(0)) ++r0;
+        const Eigen::Index r0 = countLeadingZeroRows(L_.block(trunk, first, t, size));
         couplingStart_.push_back(r0);
         auto C = L_.block(trunk + r0, first, t - r0, size);
         D.triangularView<Eigen::Lower>().transpose().solveInPlace<Eigen::OnTheRight>(C);
